@@ -1,0 +1,73 @@
+#pragma once
+// The renderer's scene: what the glTF loader produces and everything downstream (lights, BVH,
+// upload, CPU code) reads. Geometry is flattened to world-space triangles.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "shared/layouts.h"
+
+namespace mixtrace {
+
+using shared::MaterialGpu;
+
+struct Bounds {
+  glm::vec3 min{1e30f};
+  glm::vec3 max{-1e30f};
+  void grow(const glm::vec3& p) { min = glm::min(min, p); max = glm::max(max, p); }
+  void grow(const Bounds& b) { min = glm::min(min, b.min); max = glm::max(max, b.max); }
+  bool valid() const { return min.x <= max.x && min.y <= max.y && min.z <= max.z; }
+  glm::vec3 center() const { return 0.5f * (min + max); }
+  glm::vec3 extent() const { return max - min; }
+};
+
+// One flattened world-space triangle.
+struct Triangle {
+  glm::vec3 p[3];
+  glm::vec3 n[3];      // shading normals (unit); the geometric normal where the file has none
+  glm::vec2 uv[3];     // TEXCOORD_0, (0,0) where the file has none
+  uint32_t material;
+  uint32_t primitive;  // index of the glTF mesh primitive instance it came from: one area light
+};
+
+// An 8-bit RGBA image as the file stores it (colour textures are sRGB-decoded at lookup).
+struct Texture {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  uint32_t wrapS = shared::kWrapRepeat;
+  uint32_t wrapT = shared::kWrapRepeat;
+  std::vector<uint32_t> texels;  // RGBA8 packed little-endian (R in the low byte), top row first
+  glm::vec3 averageLinear{0.0f}; // mean of the sRGB-decoded texels (used for light power)
+};
+
+// KHR_lights_punctual, in world space.
+struct PunctualLight {
+  uint32_t kind = shared::kLightPoint;  // kLightPoint, kLightSpot or kLightDirectional
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // the direction the light travels (node's -Z)
+  glm::vec3 intensity{1.0f};               // colour * intensity
+  float innerConeAngle = 0.0f;
+  float outerConeAngle = 0.7853981634f;
+};
+
+struct Camera {
+  glm::vec3 position{0.0f};
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float yfov = 0.8f;        // vertical field of view, radians
+  bool fromFile = false;    // false: framed from the scene bounds
+};
+
+struct Scene {
+  std::string name;                 // file name without directory
+  std::vector<Triangle> triangles;
+  std::vector<MaterialGpu> materials;
+  std::vector<Texture> textures;
+  std::vector<PunctualLight> punctualLights;
+  Camera camera;
+  Bounds bounds;
+};
+
+}  // namespace mixtrace

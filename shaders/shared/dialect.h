@@ -1,0 +1,34 @@
+// The common dialect of the headers in shaders/shared: each is included by GLSL shaders and by
+// C++ (with GLM), so a struct that crosses the host/GPU boundary and the math both sides need
+// (BSDF, sampling, light pdfs) are written once.
+//
+// Rules for shared code:
+//   - wrap the contents in SHARED_BEGIN / SHARED_END; mark functions SHARED_FN;
+//   - use INOUT(T) / OUT(T) for reference parameters;
+//   - only .x .y .z .w component access (no swizzles), no struct constructors (assign fields),
+//     no GLSL-only built-ins (atomics, barriers, textures);
+//   - buffers are reached through macros the includer defines (see lights.h).
+#ifndef MIXTRACE_SHARED_DIALECT_H
+#define MIXTRACE_SHARED_DIALECT_H
+
+#ifdef __cplusplus
+#include <cmath>
+#include <cstdint>
+#include <glm/glm.hpp>
+// Scalar maths resolves to the float overloads of <cmath>; vector arguments find GLM's by ADL.
+#define SHARED_BEGIN namespace mixtrace { namespace shared { using namespace glm; typedef unsigned int uint; \
+  using std::sqrt; using std::abs; using std::pow; using std::exp; using std::log; using std::sin; \
+  using std::cos; using std::tan; using std::acos; using std::asin; using std::floor; using std::ceil;
+#define SHARED_END } }
+#define SHARED_FN inline
+#define INOUT(T) T&
+#define OUT(T) T&
+#else
+#define SHARED_BEGIN
+#define SHARED_END
+#define SHARED_FN
+#define INOUT(T) inout T
+#define OUT(T) out T
+#endif
+
+#endif

@@ -1,0 +1,157 @@
+// Every struct that crosses the host/GPU boundary, declared once. GLSL reads these buffers with
+// layout(scalar) (VK_EXT_scalar_block_layout, core in Vulkan 1.2), whose packing is exactly C's
+// for these types, so C++ (GLM) and GLSL agree byte for byte; static_asserts in
+// host/vulkan/layout_checks.cpp pin the sizes.
+#ifndef MIXTRACE_SHARED_LAYOUTS_H
+#define MIXTRACE_SHARED_LAYOUTS_H
+#include "shared/dialect.h"
+SHARED_BEGIN
+
+// Pinhole camera; the image size decides the aspect ratio.
+struct CameraGpu {
+  vec3 position;
+  float tanHalfFovY;   // tan(yfov / 2)
+  vec3 right;          // unit vectors of the camera frame in world space
+  float aspect;        // width / height
+  vec3 up;
+  uint width;
+  vec3 forward;
+  uint height;
+};
+
+// Flattened BVH node. Interior (triCount == 0): children at leftOrFirst and leftOrFirst + 1.
+// Leaf: triangles [leftOrFirst, leftOrFirst + triCount) in BVH order.
+struct BvhNode {
+  vec3 boundsMin;
+  uint leftOrFirst;
+  vec3 boundsMax;
+  uint triCount;
+};
+
+// Intersection data of one triangle, in BVH order: v0 and the two edges v1-v0, v2-v0.
+struct TriangleGeom {
+  vec3 v0;
+  vec3 e1;
+  vec3 e2;
+};
+
+// Shading data of one triangle, in BVH order.
+struct TriangleShading {
+  vec3 n0;
+  vec3 n1;
+  vec3 n2;
+  vec2 uv0;
+  vec2 uv1;
+  vec2 uv2;
+  uint material;
+  int emitter;         // index into the emitter buffer, -1 when the triangle does not emit
+};
+
+const uint kMaterialDoubleSided = 1u;
+
+// glTF metallic-roughness material; textures are -1 when absent.
+struct MaterialGpu {
+  vec3 baseColor;
+  float metallic;
+  vec3 emission;       // emissiveFactor * KHR_materials_emissive_strength
+  float roughness;
+  int baseColorTexture;
+  int metallicRoughnessTexture;
+  int emissiveTexture;
+  uint flags;          // kMaterialDoubleSided
+};
+
+// glTF sampler wrap modes.
+const uint kWrapRepeat = 0u;
+const uint kWrapClamp = 1u;
+const uint kWrapMirror = 2u;
+
+// A texture inside the texel buffer (RGBA8 packed in a uint, row-major, top row first).
+struct TextureGpu {
+  uint offset;         // first texel
+  uint width;
+  uint height;
+  uint wrap;           // wrapS | (wrapT << 2)
+};
+
+const uint kLightArea = 0u;
+const uint kLightPoint = 1u;
+const uint kLightSpot = 2u;
+const uint kLightDirectional = 3u;
+
+// A light: an emissive primitive (its triangles are emitters [firstEmitter, +emitterCount)) or a
+// punctual light. selectPmf/selectCdf are the light-selection distribution of the method.
+struct LightGpu {
+  uint kind;
+  uint firstEmitter;
+  uint emitterCount;
+  float selectPmf;
+  vec3 position;       // point and spot
+  float selectCdf;     // inclusive prefix sum of selectPmf
+  vec3 direction;      // spot and directional: the direction the light travels
+  float spotScale;     // glTF spot falloff: clamp(cos * scale + offset, 0, 1)^2
+  vec3 intensity;      // colour * intensity (W/sr, or W/m^2 for directional)
+  float spotOffset;
+};
+
+// An emissive triangle of an area light, chosen inside its light by area * radiance.
+struct EmitterGpu {
+  uint triangle;       // BVH-order triangle index
+  uint light;
+  float pmf;           // probability inside its light
+  float cdf;           // inclusive prefix sum inside its light
+};
+
+// Result of an extension-ray intersection. triangle == kNoHit for a miss.
+const uint kNoHit = 0xffffffffu;
+struct HitRecord {
+  float t;
+  uint triangle;
+  float u;             // barycentrics of v1 and v2
+  float v;
+};
+
+// A pending shadow ray and the radiance it adds to its path when unoccluded.
+struct ShadowRay {
+  vec3 origin;
+  float tMax;
+  vec3 direction;
+  uint path;
+  vec3 contribution;
+  float pad;
+};
+
+// Queue counters and indirect dispatch arguments, in one buffer.
+struct DispatchArgs {
+  uint x;
+  uint y;
+  uint z;
+};
+struct QueueState {
+  uint rayCount[2];    // ping-pong extension-ray queues
+  uint shadowCount;
+  uint nonFinite;      // samples dropped from the image because they were NaN or Inf
+  DispatchArgs rayArgs;
+  DispatchArgs shadowArgs;
+};
+
+// Per-dispatch constants (push constants, <= 128 bytes).
+struct PassConstants {
+  uint pathCount;      // paths in this wavefront chunk
+  uint pixelOffset;    // first pixel of the chunk
+  uint sampleIndex;    // sample pass (spp index)
+  uint seed;
+  uint depth;          // 1 = the camera ray's vertex
+  uint maxDepth;       // Mitsuba convention: 1 = emitters seen directly
+  uint queueIn;        // which rayCount/queue is read (0/1)
+  uint lightCount;
+  float sceneRadius;   // for directional lights' shadow rays and offsets
+  uint mode;           // pass-specific selector
+  uint pad0;
+  uint pad1;
+};
+
+const uint kWorkgroupSize = 64u;
+
+SHARED_END
+#endif
