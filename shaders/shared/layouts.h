@@ -133,6 +133,8 @@ struct QueueState {
   uint nonFinite;      // samples dropped from the image because they were NaN or Inf
   DispatchArgs rayArgs;
   DispatchArgs shadowArgs;
+  uint extensionRays[2];  // rays traced so far, 64-bit as (low, high): counted by prepare.comp
+  uint shadowRays[2];
 };
 
 // Per-dispatch constants (push constants, <= 128 bytes).

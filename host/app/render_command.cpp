@@ -1,0 +1,144 @@
+#include "app/render_command.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "output/exr_io.h"
+#include "output/png_preview.h"
+#include "output/render_stats.h"
+#include "render/wavefront_renderer.h"
+#include "scene/gltf_loader.h"
+#include "scene/prepared_scene.h"
+#include "util/error.h"
+#include "util/log.h"
+#include "util/progress.h"
+#include "vulkan/context.h"
+
+namespace mixtrace {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+constexpr int kDefaultSpp = 16;
+
+LightSelection selectionFor(const std::string& method) {
+  return method == "pt-uniform" ? LightSelection::Uniform : LightSelection::Power;
+}
+
+std::string formatRate(double perSecond) {
+  char b[64];
+  std::snprintf(b, sizeof(b), "%.2f M", perSecond * 1e-6);
+  return b;
+}
+
+}  // namespace
+
+std::string defaultScenePath() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  for (fs::path candidate : {fs::path(MIXTRACE_SOURCE_DIR) / "scenes/cornell_box.gltf",
+                             exe.parent_path() / "../scenes/cornell_box.gltf",
+                             exe.parent_path() / "../share/mixtrace/scenes/cornell_box.gltf"})
+    if (fs::exists(candidate, ec)) return candidate.string();
+  throw Error("no scene given and the default scene scenes/cornell_box.gltf was not found");
+}
+
+int runRender(const RenderOptions& o) {
+  namespace fs = std::filesystem;
+  setQuiet(o.quiet);
+  if (o.backend != "vulkan") throw Error("--backend " + o.backend + " is not available yet (use --backend vulkan)");
+  const std::string scenePath = o.scene.empty() ? defaultScenePath() : o.scene;
+  const std::string outPath = o.out.empty() ? fs::path(scenePath).stem().string() + ".exr" : o.out;
+
+  auto setupStart = Clock::now();
+  PreparedScene prepared = prepareScene(loadGltf(scenePath), selectionFor(o.method));
+  VulkanContext ctx(ContextOptions{o.device, o.validation});
+  RenderSettings settings;
+  settings.width = uint32_t(o.width);
+  settings.height = uint32_t(o.height);
+  settings.maxDepth = uint32_t(o.maxDepth);
+  settings.seed = o.seed;
+  settings.generalPipelines = o.generalPipelines;
+  WavefrontRenderer renderer(ctx, prepared, settings);
+  double setupSeconds = secondsSince(setupStart);
+  info("scene " + prepared.scene.name + ": " + std::to_string(prepared.scene.triangles.size()) + " triangles, " +
+       std::to_string(prepared.lights.lights.size()) + " lights; device " + ctx.deviceName() + "; " +
+       prepared.features.describe());
+
+  // Sample passes in batches: one sample first to measure, then batches of about 0.25 s so the
+  // progress line and --time react promptly without paying a submission per sample.
+  const bool timed = o.timeSeconds > 0.0;
+  const uint32_t targetSpp = o.spp > 0 ? uint32_t(o.spp) : (timed ? UINT32_MAX : kDefaultSpp);
+  const double pixels = double(o.width) * o.height;
+  Progress progress(!o.quiet);
+  auto renderStart = Clock::now();
+  uint32_t batch = 1;
+  while (renderer.samplesPerPixel() < targetSpp) {
+    uint32_t n = std::min(batch, targetSpp - renderer.samplesPerPixel());
+    renderer.renderSamples(n);
+    double elapsed = secondsSince(renderStart);
+    if (timed && elapsed >= o.timeSeconds) break;
+    double perSample = elapsed / renderer.samplesPerPixel();
+    double budget = timed ? std::min(0.25, o.timeSeconds - elapsed) : 0.25;
+    batch = uint32_t(std::clamp(budget / std::max(perSample, 1e-6), 1.0, 256.0));
+    double fraction = timed ? elapsed / o.timeSeconds : double(renderer.samplesPerPixel()) / targetSpp;
+    progress.update(fraction, std::to_string(renderer.samplesPerPixel()) + (timed ? "" : "/" + std::to_string(targetSpp)) +
+                                  " spp, " + formatRate(renderer.samplesPerPixel() * pixels / elapsed) + " samples/s");
+  }
+  double renderSeconds = secondsSince(renderStart);
+  progress.finish();
+
+  Image variance;
+  Image image = renderer.readImage(o.variance ? &variance : nullptr);
+  WavefrontRenderer::Counters counters = renderer.counters();
+
+  RenderStats stats;
+  stats.scene = prepared.scene.name;
+  stats.method = o.method;
+  stats.backend = o.backend;
+  stats.device = ctx.deviceName();
+  stats.features = (o.generalPipelines ? FeatureSet::general() : prepared.features).describe();
+  stats.width = uint32_t(o.width);
+  stats.height = uint32_t(o.height);
+  stats.maxDepth = uint32_t(o.maxDepth);
+  stats.seed = o.seed;
+  stats.spp = renderer.samplesPerPixel();
+  stats.renderSeconds = renderSeconds;
+  stats.setupSeconds = setupSeconds;
+  stats.bvhBuildSeconds = prepared.bvh.buildSeconds;
+  stats.triangles = prepared.scene.triangles.size();
+  stats.bvhNodes = prepared.bvh.nodes.size();
+  stats.lights = prepared.lights.lights.size();
+  stats.extensionRays = counters.extensionRays;
+  stats.shadowRays = counters.shadowRays;
+  stats.nonFiniteSamples = counters.nonFiniteSamples;
+  stats.validationErrors = ctx.validationErrors();
+  stats.passMs = renderer.passTimesMs();
+
+  ExrMetadata meta;
+  meta.ints["spp"] = int(stats.spp);
+  meta.floats["renderSeconds"] = float(renderSeconds);
+  meta.strings["method"] = o.method;
+  meta.strings["scene"] = prepared.scene.name;
+  meta.strings["renderer"] = std::string("mixtrace ") + MIXTRACE_VERSION;
+  writeExr(outPath, image, meta, o.variance ? &variance : nullptr);
+  if (o.png) writePngPreview(defaultPreviewPath(outPath), image);
+  if (!o.statsPath.empty()) writeStatsJson(o.statsPath, stats);
+
+  info("wrote " + outPath + ": " + std::to_string(stats.spp) + " spp in " + std::to_string(renderSeconds) + " s, " +
+       formatRate(stats.samplesPerSecond()) + " samples/s, " + formatRate(stats.raysPerSecond()) + " rays/s");
+  if (stats.nonFiniteSamples > 0)
+    warn(std::to_string(stats.nonFiniteSamples) + " non-finite samples were dropped from the image");
+  if (stats.validationErrors > 0) {
+    std::fprintf(stderr, "mixtrace: error: the Vulkan validation layer reported %u error(s)\n", stats.validationErrors);
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace mixtrace

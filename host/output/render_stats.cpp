@@ -1,0 +1,52 @@
+#include "output/render_stats.h"
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "util/error.h"
+
+namespace mixtrace {
+
+double RenderStats::samplesPerSecond() const {
+  return renderSeconds > 0.0 ? double(spp) * width * height / renderSeconds : 0.0;
+}
+
+double RenderStats::raysPerSecond() const {
+  return renderSeconds > 0.0 ? double(extensionRays + shadowRays) / renderSeconds : 0.0;
+}
+
+void writeStatsJson(const std::string& path, const RenderStats& s) {
+  nlohmann::json j;
+  j["scene"] = s.scene;
+  j["method"] = s.method;
+  j["backend"] = s.backend;
+  j["device"] = s.device;
+  j["features"] = s.features;
+  j["width"] = s.width;
+  j["height"] = s.height;
+  j["max_depth"] = s.maxDepth;
+  j["seed"] = s.seed;
+  j["spp"] = s.spp;
+  j["render_seconds"] = s.renderSeconds;
+  j["setup_seconds"] = s.setupSeconds;
+  j["samples_per_second"] = s.samplesPerSecond();
+  j["rays_per_second"] = s.raysPerSecond();
+  j["extension_rays"] = s.extensionRays;
+  j["shadow_rays"] = s.shadowRays;
+  j["bvh_build_seconds"] = s.bvhBuildSeconds;
+  j["triangles"] = s.triangles;
+  j["bvh_nodes"] = s.bvhNodes;
+  j["lights"] = s.lights;
+  j["non_finite_samples"] = s.nonFiniteSamples;
+  j["validation_errors"] = s.validationErrors;
+  nlohmann::json passes = nlohmann::json::object();
+  for (auto& [name, ms] : s.passMs) passes[name] = ms;
+  j["gpu_pass_ms"] = passes;
+  std::ofstream f(path);
+  if (!f) throw Error("cannot write stats file " + path);
+  f << j.dump(2) << "\n";
+  if (!f) throw Error("cannot write stats file " + path);
+}
+
+}  // namespace mixtrace

@@ -1,0 +1,28 @@
+#pragma once
+// What a render reports about itself: written as the --stats JSON and summarised on stderr.
+#include <cstdint>
+#include <map>
+#include <string>
+
+namespace mixtrace {
+
+struct RenderStats {
+  std::string scene, method, backend, device, features;
+  uint32_t width = 0, height = 0, maxDepth = 0, seed = 0;
+  uint32_t spp = 0;
+  double renderSeconds = 0.0;   // sample passes only, excluding set-up
+  double setupSeconds = 0.0;    // loading, BVH, upload, pipeline creation
+  double bvhBuildSeconds = 0.0;
+  uint64_t triangles = 0, lights = 0, bvhNodes = 0;
+  uint64_t extensionRays = 0, shadowRays = 0;
+  uint64_t nonFiniteSamples = 0;  // caught and dropped, never written to the image
+  uint32_t validationErrors = 0;
+  std::map<std::string, double> passMs;  // GPU time per pass (Vulkan timestamp queries)
+
+  double samplesPerSecond() const;
+  double raysPerSecond() const;
+};
+
+void writeStatsJson(const std::string& path, const RenderStats& stats);
+
+}  // namespace mixtrace

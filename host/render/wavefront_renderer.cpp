@@ -1,0 +1,188 @@
+#include "render/wavefront_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "shared/bindings.h"
+#include "util/error.h"
+#include "vulkan/check.h"
+#include "vulkan/context.h"
+
+namespace mixtrace {
+namespace {
+
+constexpr uint32_t kPrepareRays = 0;
+constexpr uint32_t kPrepareShadows = 1;
+
+uint32_t groupsFor(uint32_t n) { return (n + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize; }
+
+}  // namespace
+
+WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const RenderSettings& s)
+    : ctx_(ctx),
+      settings_(s),
+      lightCount_(uint32_t(scene.lights.lights.size())),
+      sceneRadius_(scene.sceneRadius),
+      pixelCount_(s.width * s.height),
+      pathCount_(std::min(s.width * s.height, s.maxPathsPerChunk)),
+      scene_(ctx, scene, makeCamera(scene.scene, s.width, s.height)),
+      set_(ctx, BINDING_COUNT, sizeof(shared::PassConstants)),
+      rayOrigin_(ctx, size_t(pathCount_) * sizeof(glm::vec3), "path state (ray origins)"),
+      rayDirection_(ctx, size_t(pathCount_) * sizeof(glm::vec3), "path state (ray directions)"),
+      throughput_(ctx, size_t(pathCount_) * sizeof(glm::vec3), "path state (throughput)"),
+      radiance_(ctx, size_t(pathCount_) * sizeof(glm::vec3), "path state (radiance)"),
+      rng_(ctx, size_t(pathCount_) * sizeof(uint32_t), "path state (random numbers)"),
+      misPdf_(ctx, size_t(pathCount_) * sizeof(float), "path state (MIS pdfs)"),
+      hits_(ctx, size_t(pathCount_) * sizeof(shared::HitRecord), "path state (hits)"),
+      rayQueue_(ctx, size_t(pathCount_) * 2 * sizeof(uint32_t), "ray queues"),
+      shadowQueue_(ctx, size_t(pathCount_) * sizeof(shared::ShadowRay), "shadow-ray queue"),
+      queueState_(ctx, sizeof(shared::QueueState), "queue counters", true),
+      film_(ctx, size_t(pixelCount_) * 2 * sizeof(glm::vec3), "film (" + std::to_string(s.width) + "x" + std::to_string(s.height) + ")", true),
+      timer_(ctx, 4096) {
+  if (s.maxDepth < 1) throw Error("--max-depth must be at least 1");
+  scene_.bindTo(set_);
+  set_.bind(BINDING_RAY_ORIGIN, rayOrigin_);
+  set_.bind(BINDING_RAY_DIRECTION, rayDirection_);
+  set_.bind(BINDING_THROUGHPUT, throughput_);
+  set_.bind(BINDING_RADIANCE, radiance_);
+  set_.bind(BINDING_RNG, rng_);
+  set_.bind(BINDING_MIS_PDF, misPdf_);
+  set_.bind(BINDING_HITS, hits_);
+  set_.bind(BINDING_RAY_QUEUE, rayQueue_);
+  set_.bind(BINDING_SHADOW_QUEUE, shadowQueue_);
+  set_.bind(BINDING_QUEUE_STATE, queueState_);
+  set_.bind(BINDING_FILM, film_);
+
+  std::vector<uint32_t> spec = (s.generalPipelines ? FeatureSet::general() : scene.features).specialization();
+  VkPipelineLayout layout = set_.pipelineLayout();
+  generate_ = std::make_unique<ComputePipeline>(ctx, "generate", layout, spec);
+  prepare_ = std::make_unique<ComputePipeline>(ctx, "prepare", layout, spec);
+  intersect_ = std::make_unique<ComputePipeline>(ctx, "intersect", layout, spec);
+  shade_ = std::make_unique<ComputePipeline>(ctx, "shade", layout, spec);
+  shadow_ = std::make_unique<ComputePipeline>(ctx, "shadow", layout, spec);
+  accumulate_ = std::make_unique<ComputePipeline>(ctx, "accumulate", layout, spec);
+
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    film_.fillZero(cmd);
+    queueState_.fillZero(cmd);
+  });
+
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  vkCheck(vkCreateFence(ctx.device(), &fci, nullptr, &fence_), "vkCreateFence");
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = ctx.commandPool();
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  vkCheck(vkAllocateCommandBuffers(ctx.device(), &ai, &cmd_), "vkAllocateCommandBuffers");
+}
+
+WavefrontRenderer::~WavefrontRenderer() {
+  vkDeviceWaitIdle(ctx_.device());
+  vkFreeCommandBuffers(ctx_.device(), ctx_.commandPool(), 1, &cmd_);
+  vkDestroyFence(ctx_.device(), fence_, nullptr);
+}
+
+void WavefrontRenderer::dispatch(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc,
+                                 uint32_t groups) {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+  vkCmdPushConstants(cmd, set_.pipelineLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+  vkCmdDispatch(cmd, groups, 1, 1);
+  computeBarrier(cmd);
+  timer_.mark(cmd, p.name().c_str());
+}
+
+void WavefrontRenderer::dispatchIndirect(VkCommandBuffer cmd, const ComputePipeline& p,
+                                         const shared::PassConstants& pc, VkDeviceSize offset) {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+  vkCmdPushConstants(cmd, set_.pipelineLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+  vkCmdDispatchIndirect(cmd, queueState_.handle(), offset);
+  computeBarrier(cmd);
+  timer_.mark(cmd, p.name().c_str());
+}
+
+void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths) {
+  shared::PassConstants pc{};
+  pc.pathCount = paths;
+  pc.pixelOffset = pixelOffset;
+  pc.sampleIndex = sampleIndex;
+  pc.seed = settings_.seed;
+  pc.maxDepth = settings_.maxDepth;
+  pc.lightCount = lightCount_;
+  pc.sceneRadius = sceneRadius_;
+
+  dispatch(cmd, *generate_, pc, groupsFor(paths));
+  for (uint32_t depth = 1; depth <= settings_.maxDepth; ++depth) {
+    pc.depth = depth;
+    pc.queueIn = (depth - 1) & 1u;
+    pc.mode = kPrepareRays;
+    dispatch(cmd, *prepare_, pc, 1);
+    dispatchIndirect(cmd, *intersect_, pc, offsetof(shared::QueueState, rayArgs));
+    dispatchIndirect(cmd, *shade_, pc, offsetof(shared::QueueState, rayArgs));
+    if (depth < settings_.maxDepth) {   // the last depth only adds emission: no shadow rays
+      pc.mode = kPrepareShadows;
+      dispatch(cmd, *prepare_, pc, 1);
+      dispatchIndirect(cmd, *shadow_, pc, offsetof(shared::QueueState, shadowArgs));
+    }
+  }
+  dispatch(cmd, *accumulate_, pc, groupsFor(paths));
+}
+
+void WavefrontRenderer::renderSamples(uint32_t count) {
+  const uint32_t passesPerSample = 2 + 3 * settings_.maxDepth + 2 * (settings_.maxDepth - 1);
+  const uint32_t chunks = (pixelCount_ + pathCount_ - 1) / pathCount_;
+  const uint32_t perSubmit = std::max(1u, (timer_.capacity() - 2) / (passesPerSample * chunks));
+  while (count > 0) {
+    uint32_t n = std::min(count, perSubmit);
+    vkResetCommandBuffer(cmd_, 0);
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vkBeginCommandBuffer(cmd_, &bi);
+    timer_.begin(cmd_);
+    for (uint32_t s = 0; s < n; ++s)
+      for (uint32_t offset = 0; offset < pixelCount_; offset += pathCount_)
+        recordSample(cmd_, spp_ + s, offset, std::min(pathCount_, pixelCount_ - offset));
+    vkCheck(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cmd_;
+    vkCheck(vkResetFences(ctx_.device(), 1, &fence_), "vkResetFences");
+    vkCheck(vkQueueSubmit(ctx_.queue(), 1, &si, fence_), "vkQueueSubmit");
+    vkCheck(vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    timer_.collect();
+    spp_ += n;
+    count -= n;
+  }
+}
+
+Image WavefrontRenderer::readImage(Image* variance) const {
+  std::vector<glm::vec3> film(size_t(pixelCount_) * 2);
+  film_.download(film.data(), film.size() * sizeof(glm::vec3));
+  Image mean;
+  mean.width = int(settings_.width);
+  mean.height = int(settings_.height);
+  mean.rgb.assign(size_t(pixelCount_) * 3, 0.0f);
+  if (variance) *variance = mean;
+  if (spp_ == 0) return mean;
+  const double n = spp_;
+  for (size_t p = 0; p < pixelCount_; ++p)
+    for (int c = 0; c < 3; ++c) {
+      double sum = film[2 * p][c], sumSq = film[2 * p + 1][c];
+      double m = sum / n;
+      mean.rgb[3 * p + c] = float(m);
+      if (variance && spp_ > 1) variance->rgb[3 * p + c] = float(std::max(0.0, (sumSq / n - m * m) / (n - 1.0)));
+    }
+  return mean;
+}
+
+WavefrontRenderer::Counters WavefrontRenderer::counters() const {
+  shared::QueueState q{};
+  queueState_.download(&q, sizeof(q));
+  Counters c;
+  c.nonFiniteSamples = q.nonFinite;
+  c.extensionRays = uint64_t(q.extensionRays[0]) | (uint64_t(q.extensionRays[1]) << 32);
+  c.shadowRays = uint64_t(q.shadowRays[0]) | (uint64_t(q.shadowRays[1]) << 32);
+  return c;
+}
+
+}  // namespace mixtrace

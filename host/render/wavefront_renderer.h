@@ -1,0 +1,72 @@
+#pragma once
+// The wavefront path tracer on Vulkan: records the stages (generate, [intersect, shade,
+// shadow] x depth, accumulate) as separate dispatches over queues in device memory; the sizes
+// of later dispatches come from the queues' counters via vkCmdDispatchIndirect. The host only
+// records and submits.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "output/image.h"
+#include "render/gpu_scene.h"
+#include "scene/prepared_scene.h"
+#include "vulkan/buffer.h"
+#include "vulkan/pass_timer.h"
+#include "vulkan/pipeline.h"
+
+namespace mixtrace {
+
+class VulkanContext;
+
+struct RenderSettings {
+  uint32_t width = 320;
+  uint32_t height = 240;
+  uint32_t maxDepth = 5;
+  uint32_t seed = 0;
+  bool generalPipelines = false;   // ignore the feature set (testing aid)
+  uint32_t maxPathsPerChunk = 1u << 20;  // the wavefront's width; larger images go in chunks
+};
+
+class WavefrontRenderer {
+ public:
+  WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const RenderSettings& settings);
+  ~WavefrontRenderer();
+
+  // Renders `count` more samples per pixel; blocks until the GPU is done.
+  void renderSamples(uint32_t count);
+  uint32_t samplesPerPixel() const { return spp_; }
+  // Mean radiance per pixel, and the variance of that mean when `variance` is given.
+  Image readImage(Image* variance = nullptr) const;
+  struct Counters {
+    uint64_t nonFiniteSamples = 0;
+    uint64_t extensionRays = 0;
+    uint64_t shadowRays = 0;
+  };
+  Counters counters() const;
+  std::map<std::string, double> passTimesMs() const { return timer_.totalsMs(); }
+  uint32_t pathsPerChunk() const { return pathCount_; }
+
+ private:
+  void recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths);
+  void dispatch(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, uint32_t groups);
+  void dispatchIndirect(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, VkDeviceSize offset);
+
+  VulkanContext& ctx_;
+  RenderSettings settings_;
+  uint32_t lightCount_;
+  float sceneRadius_;
+  uint32_t pixelCount_;
+  uint32_t pathCount_;
+  uint32_t spp_ = 0;
+  GpuScene scene_;
+  DescriptorSet set_;
+  Buffer rayOrigin_, rayDirection_, throughput_, radiance_, rng_, misPdf_, hits_, rayQueue_, shadowQueue_, queueState_, film_;
+  std::unique_ptr<ComputePipeline> generate_, prepare_, intersect_, shade_, shadow_, accumulate_;
+  PassTimer timer_;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+};
+
+}  // namespace mixtrace

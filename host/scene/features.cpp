@@ -1,0 +1,37 @@
+#include "scene/features.h"
+
+#include "shared/bindings.h"
+
+namespace mixtrace {
+
+std::vector<uint32_t> FeatureSet::specialization() const {
+  std::vector<uint32_t> v(SPEC_COUNT);
+  v[SPEC_HAS_TEXTURES] = textures;
+  v[SPEC_HAS_AREA_LIGHTS] = areaLights;
+  v[SPEC_HAS_PUNCTUAL_LIGHTS] = punctualLights;
+  v[SPEC_HAS_METALS] = metals;
+  v[SPEC_SINGLE_LIGHT] = singleLight;
+  return v;
+}
+
+std::string FeatureSet::describe() const {
+  auto b = [](bool x) { return x ? "1" : "0"; };
+  return std::string("textures=") + b(textures) + " area-lights=" + b(areaLights) + " punctual-lights=" +
+         b(punctualLights) + " metals=" + b(metals) + " single-light=" + b(singleLight);
+}
+
+FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
+  FeatureSet f;
+  f.textures = false;
+  f.metals = false;
+  for (const MaterialGpu& m : scene.materials) {
+    f.textures |= m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0;
+    f.metals |= m.metallic > 0.0f || m.metallicRoughnessTexture >= 0;
+  }
+  f.areaLights = lights.hasArea();
+  f.punctualLights = lights.hasPunctual();
+  f.singleLight = lights.lights.size() == 1;
+  return f;
+}
+
+}  // namespace mixtrace

@@ -1,0 +1,63 @@
+#include "scene/prepared_scene.h"
+
+#include <cmath>
+
+#include "util/error.h"
+#include "util/log.h"
+
+namespace mixtrace {
+
+PreparedScene prepareScene(Scene scene, LightSelection selection) {
+  if (scene.triangles.empty()) throw Error(scene.name + " contains no triangles");
+  PreparedScene p;
+  p.bvh = buildBvh(scene.triangles);
+  p.lights = buildLightSet(scene, p.bvh.triangleOrder, selection);
+  p.features = deriveFeatures(scene, p.lights);
+  if (p.lights.lights.empty()) warn(scene.name + " has no lights: the image will be black");
+
+  p.shading.resize(p.bvh.triangleOrder.size());
+  for (size_t b = 0; b < p.shading.size(); ++b) {
+    const Triangle& t = scene.triangles[p.bvh.triangleOrder[b]];
+    shared::TriangleShading& s = p.shading[b];
+    s.n0 = t.n[0]; s.n1 = t.n[1]; s.n2 = t.n[2];
+    s.uv0 = t.uv[0]; s.uv1 = t.uv[1]; s.uv2 = t.uv[2];
+    s.material = t.material;
+    s.emitter = p.lights.triangleEmitter[b];
+  }
+  for (const Texture& t : scene.textures) {
+    shared::TextureGpu g{};
+    g.offset = uint32_t(p.texels.size());
+    g.width = t.width;
+    g.height = t.height;
+    g.wrap = t.wrapS | (t.wrapT << 2u);
+    p.texels.insert(p.texels.end(), t.texels.begin(), t.texels.end());
+    p.textures.push_back(g);
+  }
+  p.sceneRadius = std::max(0.5f * glm::length(scene.bounds.extent()), 1e-6f);
+  p.scene = std::move(scene);
+  return p;
+}
+
+shared::CameraGpu makeCamera(const Scene& scene, uint32_t width, uint32_t height) {
+  Camera cam = scene.camera;
+  if (!cam.fromFile) {
+    // Frame the bounding sphere from +Z, looking down -Z, with the default field of view.
+    float radius = std::max(0.5f * glm::length(scene.bounds.extent()), 1e-6f);
+    float distance = radius / std::sin(0.5f * cam.yfov) * 1.05f;
+    cam.forward = glm::vec3(0.0f, 0.0f, -1.0f);
+    cam.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    cam.position = scene.bounds.center() - distance * cam.forward;
+  }
+  shared::CameraGpu c{};
+  c.position = cam.position;
+  c.forward = glm::normalize(cam.forward);
+  c.right = glm::normalize(glm::cross(c.forward, cam.up));
+  c.up = glm::cross(c.right, c.forward);
+  c.tanHalfFovY = std::tan(0.5f * cam.yfov);
+  c.aspect = float(width) / float(height);
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
+}  // namespace mixtrace

@@ -1,0 +1,33 @@
+#pragma once
+// A loaded scene made ready for rendering: BVH built (triangles in BVH order), lights and their
+// selection distribution, feature set, and every flat array the shaders read. Both backends
+// render from this.
+#include <cstdint>
+#include <vector>
+
+#include "bvh/bvh.h"
+#include "scene/features.h"
+#include "scene/light_set.h"
+#include "scene/scene.h"
+#include "shared/layouts.h"
+
+namespace mixtrace {
+
+struct PreparedScene {
+  Scene scene;
+  Bvh bvh;
+  LightSet lights;
+  FeatureSet features;
+  std::vector<shared::TriangleShading> shading;  // BVH order
+  std::vector<shared::TextureGpu> textures;
+  std::vector<uint32_t> texels;
+  float sceneRadius = 1.0f;
+};
+
+PreparedScene prepareScene(Scene scene, LightSelection selection);
+
+// The pinhole camera for an image of width x height: the file's camera, or a framing of the
+// scene bounds looking down -Z when the file has none.
+shared::CameraGpu makeCamera(const Scene& scene, uint32_t width, uint32_t height);
+
+}  // namespace mixtrace

@@ -1,0 +1,55 @@
+#pragma once
+// A storage buffer and its memory. Prefers memory that is both device-local and host-visible
+// (all of lavapipe's memory, resizable-BAR GPUs) so uploads are a memcpy; otherwise device-local
+// memory filled through a staging buffer.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace mixtrace {
+
+class VulkanContext;
+
+class Buffer {
+ public:
+  Buffer() = default;
+  // `name` appears in error messages ("out of memory allocating path state (12 MiB)").
+  Buffer(VulkanContext& ctx, VkDeviceSize size, const std::string& name, bool hostReadback = false);
+  ~Buffer();
+  Buffer(Buffer&& o) noexcept { *this = std::move(o); }
+  Buffer& operator=(Buffer&& o) noexcept;
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+
+  VkBuffer handle() const { return buffer_; }
+  VkDeviceSize size() const { return size_; }
+
+  void upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
+  void download(void* data, VkDeviceSize bytes, VkDeviceSize offset = 0) const;
+  template <class T> void upload(const std::vector<T>& v) { if (!v.empty()) upload(v.data(), v.size() * sizeof(T)); }
+  template <class T> std::vector<T> downloadAll() const {
+    std::vector<T> v(size_ / sizeof(T));
+    download(v.data(), v.size() * sizeof(T));
+    return v;
+  }
+  void fillZero(VkCommandBuffer cmd) const { vkCmdFillBuffer(cmd, buffer_, 0, VK_WHOLE_SIZE, 0); }
+
+ private:
+  void release();
+  VulkanContext* ctx_ = nullptr;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkDeviceSize size_ = 0;
+  void* mapped_ = nullptr;
+};
+
+// A buffer holding `v` (at least one element's worth of bytes, so empty inputs stay bindable).
+template <class T> Buffer makeBuffer(VulkanContext& ctx, const std::vector<T>& v, const std::string& name) {
+  Buffer b(ctx, v.empty() ? sizeof(T) : v.size() * sizeof(T), name);
+  b.upload(v);
+  return b;
+}
+
+}  // namespace mixtrace

@@ -1,0 +1,207 @@
+#include "vulkan/context.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include "util/error.h"
+#include "util/log.h"
+#include "vulkan/check.h"
+
+namespace mixtrace {
+namespace {
+
+std::atomic<uint32_t> gValidationErrors{0};
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                   void*) {
+  if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
+    gValidationErrors++;
+    std::fprintf(stderr, "mixtrace: validation error: %s\n", data->pMessage);
+  } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+    std::fprintf(stderr, "mixtrace: validation warning: %s\n", data->pMessage);
+  }
+  return VK_FALSE;
+}
+
+bool hasLayer(const char* name) {
+  uint32_t n = 0;
+  vkEnumerateInstanceLayerProperties(&n, nullptr);
+  std::vector<VkLayerProperties> layers(n);
+  vkEnumerateInstanceLayerProperties(&n, layers.data());
+  for (auto& l : layers)
+    if (std::strcmp(l.layerName, name) == 0) return true;
+  return false;
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower((unsigned char)c));
+  return s;
+}
+
+int computeQueueFamily(VkPhysicalDevice pd, uint32_t* timestampBits) {
+  uint32_t n = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
+  std::vector<VkQueueFamilyProperties> families(n);
+  vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, families.data());
+  for (uint32_t i = 0; i < n; ++i)
+    if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
+      *timestampBits = families[i].timestampValidBits;
+      return int(i);
+    }
+  return -1;
+}
+
+// The features the shaders rely on; a device without them cannot run mixtrace.
+bool supportsRequiredFeatures(VkPhysicalDevice pd, std::string* missing) {
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+  vkGetPhysicalDeviceFeatures2(pd, &f);
+  if (!f12.scalarBlockLayout) { *missing = "scalarBlockLayout"; return false; }
+  return true;
+}
+
+}  // namespace
+
+VulkanContext::VulkanContext(const ContextOptions& options) {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "mixtrace";
+  app.apiVersion = VK_API_VERSION_1_2;
+
+  std::vector<const char*> layers, extensions;
+  if (options.validation) {
+    if (hasLayer("VK_LAYER_KHRONOS_validation")) {
+      layers.push_back("VK_LAYER_KHRONOS_validation");
+      extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    } else {
+      warn("--validation: VK_LAYER_KHRONOS_validation is not installed (package vulkan-validationlayers)");
+    }
+  }
+  VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  ici.pApplicationInfo = &app;
+  ici.enabledLayerCount = uint32_t(layers.size());
+  ici.ppEnabledLayerNames = layers.data();
+  ici.enabledExtensionCount = uint32_t(extensions.size());
+  ici.ppEnabledExtensionNames = extensions.data();
+  VkResult r = vkCreateInstance(&ici, nullptr, &instance_);
+  if (r == VK_ERROR_INCOMPATIBLE_DRIVER || r == VK_ERROR_INITIALIZATION_FAILED)
+    throw Error("no Vulkan driver found (install mesa-vulkan-drivers for the CPU driver lavapipe, or a GPU driver)");
+  vkCheck(r, "vkCreateInstance");
+
+  if (!layers.empty()) {
+    VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+    mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                      VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    mci.pfnUserCallback = onValidationMessage;
+    auto create = (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT");
+    if (create) vkCheck(create(instance_, &mci, nullptr, &messenger_), "vkCreateDebugUtilsMessengerEXT");
+  }
+
+  uint32_t count = 0;
+  r = vkEnumeratePhysicalDevices(instance_, &count, nullptr);
+  if (r != VK_SUCCESS || count == 0)
+    throw Error("no Vulkan device found (install mesa-vulkan-drivers for the CPU driver lavapipe, or a GPU driver)");
+  std::vector<VkPhysicalDevice> devices(count);
+  vkEnumeratePhysicalDevices(instance_, &count, devices.data());
+
+  // --device: an index or a name substring; otherwise prefer a discrete GPU, then anything.
+  std::string names;
+  int chosen = -1;
+  std::string missing;
+  for (uint32_t i = 0; i < count; ++i) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(devices[i], &p);
+    names += (names.empty() ? "" : ", ") + std::to_string(i) + ": " + p.deviceName;
+    uint32_t tsBits = 0;
+    bool usable = p.apiVersion >= VK_API_VERSION_1_2 && computeQueueFamily(devices[i], &tsBits) >= 0 &&
+                  supportsRequiredFeatures(devices[i], &missing);
+    bool matches = options.device.empty() ||
+                   options.device == std::to_string(i) ||
+                   lower(p.deviceName).find(lower(options.device)) != std::string::npos;
+    if (!usable || !matches) continue;
+    if (chosen < 0) chosen = int(i);
+    else if (options.device.empty() && p.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU) chosen = int(i);
+  }
+  if (chosen < 0) {
+    if (!options.device.empty()) throw Error("no usable Vulkan device matches --device " + options.device + " (devices: " + names + ")");
+    throw Error("no Vulkan device supports what mixtrace needs (Vulkan 1.2, compute, scalar block layout; devices: " + names + ")");
+  }
+  physical_ = devices[size_t(chosen)];
+  vkGetPhysicalDeviceProperties(physical_, &properties_);
+  queueFamily_ = uint32_t(computeQueueFamily(physical_, &timestampValidBits_));
+  VkPhysicalDeviceMemoryProperties mem;
+  vkGetPhysicalDeviceMemoryProperties(physical_, &mem);
+  for (uint32_t i = 0; i < mem.memoryHeapCount; ++i)
+    if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) deviceLocalBytes_ = std::max<uint64_t>(deviceLocalBytes_, mem.memoryHeaps[i].size);
+
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  qci.queueFamilyIndex = queueFamily_;
+  qci.queueCount = 1;
+  qci.pQueuePriorities = &priority;
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  f12.scalarBlockLayout = VK_TRUE;
+  VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+  VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  dci.pNext = &f;
+  dci.queueCreateInfoCount = 1;
+  dci.pQueueCreateInfos = &qci;
+  vkCheck(vkCreateDevice(physical_, &dci, nullptr, &device_), "vkCreateDevice");
+  vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+
+  VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pci.queueFamilyIndex = queueFamily_;
+  vkCheck(vkCreateCommandPool(device_, &pci, nullptr, &commandPool_), "vkCreateCommandPool");
+}
+
+VulkanContext::~VulkanContext() {
+  if (device_) {
+    vkDeviceWaitIdle(device_);
+    vkDestroyCommandPool(device_, commandPool_, nullptr);
+    vkDestroyDevice(device_, nullptr);
+  }
+  if (messenger_) {
+    auto destroy = (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT");
+    if (destroy) destroy(instance_, messenger_, nullptr);
+  }
+  if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+uint32_t VulkanContext::validationErrors() const { return gValidationErrors.load(); }
+
+VkCommandBuffer VulkanContext::beginOneShot() {
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = commandPool_;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  VkCommandBuffer cmd;
+  vkCheck(vkAllocateCommandBuffers(device_, &ai, &cmd), "vkAllocateCommandBuffers");
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  vkBeginCommandBuffer(cmd, &bi);
+  return cmd;
+}
+
+void VulkanContext::endOneShotAndWait(VkCommandBuffer cmd) {
+  vkEndCommandBuffer(cmd);
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence;
+  vkCheck(vkCreateFence(device_, &fci, nullptr, &fence), "vkCreateFence");
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd;
+  VkResult r = vkQueueSubmit(queue_, 1, &si, fence);
+  if (r == VK_SUCCESS) r = vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX);
+  vkDestroyFence(device_, fence, nullptr);
+  vkFreeCommandBuffers(device_, commandPool_, 1, &cmd);
+  vkCheck(r, "vkQueueSubmit");
+}
+
+}  // namespace mixtrace

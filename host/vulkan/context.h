@@ -1,0 +1,62 @@
+#pragma once
+// The Vulkan instance, the chosen physical device, one compute queue and the objects every
+// pass shares (command pool, descriptor pool). Headless: no surface, no swapchain.
+#include <cstdint>
+#include <string>
+
+#include <vulkan/vulkan.h>
+
+namespace mixtrace {
+
+struct ContextOptions {
+  std::string device;       // index or case-insensitive name substring; empty = first suitable
+  bool validation = false;  // enable VK_LAYER_KHRONOS_validation and count its errors
+};
+
+class VulkanContext {
+ public:
+  explicit VulkanContext(const ContextOptions& options);
+  ~VulkanContext();
+  VulkanContext(const VulkanContext&) = delete;
+  VulkanContext& operator=(const VulkanContext&) = delete;
+
+  VkDevice device() const { return device_; }
+  VkPhysicalDevice physicalDevice() const { return physical_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  VkCommandPool commandPool() const { return commandPool_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  std::string deviceName() const { return properties_.deviceName; }
+  double timestampPeriodNs() const { return properties_.limits.timestampPeriod; }
+  bool timestampsSupported() const { return timestampValidBits_ > 0; }
+  uint64_t maxStorageBufferRange() const { return properties_.limits.maxStorageBufferRange; }
+  uint64_t deviceLocalBytes() const { return deviceLocalBytes_; }
+
+  // Validation messages of severity error seen so far (0 when validation is off).
+  uint32_t validationErrors() const;
+
+  // Records with `record`, submits, waits. For set-up copies and tests.
+  template <class F> void submitAndWait(F&& record);
+  VkCommandBuffer beginOneShot();
+  void endOneShotAndWait(VkCommandBuffer cmd);
+
+ private:
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queueFamily_ = 0;
+  uint32_t timestampValidBits_ = 0;
+  uint64_t deviceLocalBytes_ = 0;
+  VkCommandPool commandPool_ = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties_{};
+};
+
+template <class F> void VulkanContext::submitAndWait(F&& record) {
+  VkCommandBuffer cmd = beginOneShot();
+  record(cmd);
+  endOneShotAndWait(cmd);
+}
+
+}  // namespace mixtrace

@@ -1,0 +1,41 @@
+// Binding numbers of the one descriptor set every pass uses (set 0), shared by the host, which
+// writes the set, and the shaders, which declare the buffers (shaders/gpu/buffers.glsl).
+// Plain #defines because GLSL layout qualifiers need them as preprocessor constants.
+#ifndef MIXTRACE_SHARED_BINDINGS_H
+#define MIXTRACE_SHARED_BINDINGS_H
+
+// Scene (read-only, uploaded once)
+#define BINDING_CAMERA 0
+#define BINDING_BVH_NODES 1
+#define BINDING_TRIANGLES 2
+#define BINDING_TRIANGLE_SHADING 3
+#define BINDING_MATERIALS 4
+#define BINDING_TEXTURES 5
+#define BINDING_TEXELS 6
+#define BINDING_LIGHTS 7
+#define BINDING_EMITTERS 8
+// Path state (structure of arrays, one entry per path of the wavefront)
+#define BINDING_RAY_ORIGIN 9
+#define BINDING_RAY_DIRECTION 10
+#define BINDING_THROUGHPUT 11
+#define BINDING_RADIANCE 12
+#define BINDING_RNG 13
+#define BINDING_MIS_PDF 14
+#define BINDING_HITS 15
+// Queues
+#define BINDING_RAY_QUEUE 16      // 2 * pathCount entries: ping-pong halves
+#define BINDING_SHADOW_QUEUE 17
+#define BINDING_QUEUE_STATE 18
+// Film
+#define BINDING_FILM 19           // per pixel: sum and sum of squares (vec3 each)
+#define BINDING_COUNT 20
+
+// Specialization constants: the scene's feature set (host/scene/features.h fills them).
+#define SPEC_HAS_TEXTURES 0
+#define SPEC_HAS_AREA_LIGHTS 1
+#define SPEC_HAS_PUNCTUAL_LIGHTS 2
+#define SPEC_HAS_METALS 3
+#define SPEC_SINGLE_LIGHT 4
+#define SPEC_COUNT 5
+
+#endif

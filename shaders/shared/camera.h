@@ -1,0 +1,16 @@
+// Pinhole camera rays: vertical field of view, aspect ratio from the image size, box pixel
+// filter (a uniform jitter inside the pixel). Pixel (0, 0) is the top-left of the image.
+#ifndef MIXTRACE_SHARED_CAMERA_H
+#define MIXTRACE_SHARED_CAMERA_H
+#include "shared/dialect.h"
+#include "shared/layouts.h"
+SHARED_BEGIN
+
+SHARED_FN vec3 cameraRayDirection(CameraGpu c, uint x, uint y, vec2 jitter) {
+  float sx = (2.0 * (float(x) + jitter.x) / float(c.width) - 1.0) * c.tanHalfFovY * c.aspect;
+  float sy = (1.0 - 2.0 * (float(y) + jitter.y) / float(c.height)) * c.tanHalfFovY;
+  return normalize(c.forward + sx * c.right + sy * c.up);
+}
+
+SHARED_END
+#endif

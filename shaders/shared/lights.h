@@ -1,0 +1,157 @@
+// Light selection and light sampling at a shading point, and the pdf of the same sample for
+// MIS when a BSDF sample hits an emitter. One source for the GPU shade pass, the CPU code and
+// the tests that check the returned pdf equals the evaluated one.
+//
+// The includer defines the buffer accessors LIGHT(i), EMITTER(i), TRIANGLE(i), TRIANGLE_SHADING(i),
+// MATERIAL(i) (and TEXTURE(i), TEXEL(i) for texture.h), and the feature switches HAS_TEXTURES,
+// HAS_AREA_LIGHTS, HAS_PUNCTUAL_LIGHTS and SINGLE_LIGHT (specialization constants on the GPU).
+#ifndef MIXTRACE_SHARED_LIGHTS_H
+#define MIXTRACE_SHARED_LIGHTS_H
+#include "shared/constants.h"
+#include "shared/dialect.h"
+#include "shared/layouts.h"
+#include "shared/sampling.h"
+#include "shared/texture.h"
+SHARED_BEGIN
+
+struct LightSample {
+  vec3 direction;   // unit, from the shading point towards the light
+  float distance;   // to the light point (kFloatMax for directional lights)
+  vec3 radiance;    // arriving along -direction: Le (area) or intensity / d^2 * falloff (punctual)
+  float pdf;        // solid-angle pdf including selection (area); selection pmf (delta lights)
+  vec3 position;    // the point on the light (area, point, spot)
+  uint light;
+  vec3 normal;      // geometric normal of the emitter at the point (area)
+  uint triangle;    // emitting triangle (area), kNoHit otherwise
+  bool isDelta;
+};
+
+// Picks a light from the selection distribution (inclusive CDF, binary search).
+SHARED_FN uint selectLight(float u, uint lightCount) {
+  if (SINGLE_LIGHT) return 0u;
+  uint lo = 0u;
+  uint hi = lightCount - 1u;
+  while (lo < hi) {
+    uint mid = (lo + hi) >> 1u;
+    if (u < LIGHT(mid).selectCdf) hi = mid; else lo = mid + 1u;
+  }
+  return lo;
+}
+
+SHARED_FN float lightSelectPmf(uint light) {
+  if (SINGLE_LIGHT) return 1.0;
+  return LIGHT(light).selectPmf;
+}
+
+SHARED_FN uint selectEmitter(LightGpu l, float u) {
+  uint lo = l.firstEmitter;
+  uint hi = l.firstEmitter + l.emitterCount - 1u;
+  while (lo < hi) {
+    uint mid = (lo + hi) >> 1u;
+    if (u < EMITTER(mid).cdf) hi = mid; else lo = mid + 1u;
+  }
+  return lo;
+}
+
+SHARED_FN vec3 triangleGeometricNormal(TriangleGeom g) { return normalize(cross(g.e1, g.e2)); }
+SHARED_FN float triangleArea(TriangleGeom g) { return 0.5 * length(cross(g.e1, g.e2)); }
+
+// Radiance leaving triangle `tri` at barycentrics (u, v) towards `towardsViewer` (any length).
+// One-sided (front face = counter-clockwise) unless the material is double-sided.
+SHARED_FN vec3 emittedRadiance(uint tri, float u, float v, vec3 towardsViewer) {
+  TriangleShading s = TRIANGLE_SHADING(tri);
+  MaterialGpu m = MATERIAL(s.material);
+  TriangleGeom g = TRIANGLE(tri);
+  bool front = dot(cross(g.e1, g.e2), towardsViewer) > 0.0;
+  if (!front && (m.flags & kMaterialDoubleSided) == 0u) return vec3(0.0);
+  vec3 le = m.emission;
+  if (HAS_TEXTURES && m.emissiveTexture >= 0) {
+    vec2 uv = (1.0 - u - v) * s.uv0 + u * s.uv1 + v * s.uv2;
+    vec4 t = sampleTexture(m.emissiveTexture, uv, true);
+    le = le * vec3(t.x, t.y, t.z);
+  }
+  return le;
+}
+
+// Solid-angle pdf with which sampleLight() produces the point `lightPoint` on emitting triangle
+// `tri` as seen from `from`: selection * triangle pmf / area, converted by d^2 / |cos|.
+SHARED_FN float areaLightPdf(uint tri, vec3 from, vec3 lightPoint) {
+  int e = TRIANGLE_SHADING(tri).emitter;
+  if (e < 0) return 0.0;
+  EmitterGpu em = EMITTER(uint(e));
+  TriangleGeom g = TRIANGLE(tri);
+  vec3 d = lightPoint - from;
+  float dist2 = dot(d, d);
+  vec3 n = cross(g.e1, g.e2);   // length = 2 * area
+  float cosTimesTwoArea = abs(dot(n, d)) * inversesqrt(dist2);
+  if (!(cosTimesTwoArea > 0.0)) return 0.0;
+  return lightSelectPmf(em.light) * em.pmf * 2.0 * dist2 / cosTimesTwoArea;
+}
+
+// glTF's recommended spot falloff: smooth between the outer and inner cone, squared.
+SHARED_FN float spotFalloff(LightGpu l, vec3 lightToPoint) {
+  float c = dot(l.direction, lightToPoint);
+  float a = clamp(c * l.spotScale + l.spotOffset, 0.0, 1.0);
+  return a * a;
+}
+
+// One light sample for the shading point p. Returns false when the sample carries nothing
+// (back face of a one-sided emitter, outside a spot cone, degenerate); it still counts as drawn.
+SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter, vec2 uPoint,
+                           OUT(LightSample) s) {
+  s.light = selectLight(uLight, lightCount);
+  LightGpu l = LIGHT(s.light);
+  float selectPmf = lightSelectPmf(s.light);
+  s.triangle = kNoHit;
+  s.isDelta = l.kind != kLightArea;
+  s.normal = vec3(0.0);
+  s.radiance = vec3(0.0);
+  s.pdf = 0.0;
+  s.distance = 0.0;
+  s.direction = vec3(0.0, 0.0, 1.0);
+  s.position = p;
+  if (HAS_AREA_LIGHTS && l.kind == kLightArea) {
+    uint e = selectEmitter(l, uEmitter);
+    EmitterGpu em = EMITTER(e);
+    TriangleGeom g = TRIANGLE(em.triangle);
+    vec3 bary = sampleUniformTriangle(uPoint);   // weights of v0, v1, v2
+    s.position = g.v0 + bary.y * g.e1 + bary.z * g.e2;
+    s.triangle = em.triangle;
+    vec3 d = s.position - p;
+    float dist2 = dot(d, d);
+    if (!(dist2 > 0.0)) return false;
+    s.distance = sqrt(dist2);
+    s.direction = d / s.distance;
+    vec3 n = cross(g.e1, g.e2);
+    float twoArea = length(n);
+    if (!(twoArea > 0.0)) return false;
+    s.normal = n / twoArea;
+    float cosLight = abs(dot(s.normal, s.direction));
+    if (!(cosLight > 0.0)) return false;
+    s.pdf = selectPmf * em.pmf * 2.0 * dist2 / (twoArea * cosLight);
+    s.radiance = emittedRadiance(em.triangle, bary.y, bary.z, -d);
+    return s.radiance.x > 0.0 || s.radiance.y > 0.0 || s.radiance.z > 0.0;
+  }
+  if (HAS_PUNCTUAL_LIGHTS) {
+    s.pdf = selectPmf;
+    if (l.kind == kLightDirectional) {
+      s.direction = -l.direction;
+      s.distance = kFloatMax;
+      s.radiance = l.intensity;
+      return true;
+    }
+    vec3 d = l.position - p;
+    float dist2 = dot(d, d);
+    if (!(dist2 > 0.0)) return false;
+    s.position = l.position;
+    s.distance = sqrt(dist2);
+    s.direction = d / s.distance;
+    s.radiance = l.intensity / dist2;
+    if (l.kind == kLightSpot) s.radiance = s.radiance * spotFalloff(l, -s.direction);
+    return s.radiance.x > 0.0 || s.radiance.y > 0.0 || s.radiance.z > 0.0;
+  }
+  return false;
+}
+
+SHARED_END
+#endif

@@ -1,0 +1,60 @@
+// What the integrators need at a ray hit: the point, its normals (both turned to the side the
+// ray came from: the BSDF is two-sided, emission is not), texture coordinates and the BSDF
+// parameters with textures applied. Needs the accessors of lights.h.
+#ifndef MIXTRACE_SHARED_SURFACE_H
+#define MIXTRACE_SHARED_SURFACE_H
+#include "shared/bsdf.h"
+#include "shared/dialect.h"
+#include "shared/layouts.h"
+#include "shared/texture.h"
+SHARED_BEGIN
+
+struct SurfaceHit {
+  vec3 position;
+  vec3 geometricNormal;  // unit, on the side of the incoming ray
+  vec3 shadingNormal;    // unit, same side as geometricNormal
+  vec2 uv;
+  uint material;
+};
+
+SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDirection) {
+  TriangleGeom g = TRIANGLE(tri);
+  TriangleShading s = TRIANGLE_SHADING(tri);
+  SurfaceHit h;
+  h.position = g.v0 + u * g.e1 + v * g.e2;
+  vec3 ng = normalize(cross(g.e1, g.e2));
+  bool front = dot(ng, incomingDirection) < 0.0;
+  h.geometricNormal = front ? ng : -ng;
+  vec3 ns = (1.0 - u - v) * s.n0 + u * s.n1 + v * s.n2;
+  float len = length(ns);
+  ns = len > 0.0 ? ns / len : ng;
+  ns = front ? ns : -ns;
+  // A shading normal that disagrees with the geometry (bad file normals) is not trusted.
+  if (!(dot(ns, h.geometricNormal) > 0.0)) ns = h.geometricNormal;
+  h.shadingNormal = ns;
+  h.uv = (1.0 - u - v) * s.uv0 + u * s.uv1 + v * s.uv2;
+  h.material = s.material;
+  return h;
+}
+
+SHARED_FN BsdfParams surfaceBsdf(SurfaceHit h) {
+  MaterialGpu m = MATERIAL(h.material);
+  vec3 baseColor = m.baseColor;
+  float metallic = HAS_METALS ? m.metallic : 0.0;
+  float roughness = m.roughness;
+  if (HAS_TEXTURES) {
+    if (m.baseColorTexture >= 0) {
+      vec4 t = sampleTexture(m.baseColorTexture, h.uv, true);
+      baseColor = baseColor * vec3(t.x, t.y, t.z);
+    }
+    if (m.metallicRoughnessTexture >= 0) {
+      vec4 t = sampleTexture(m.metallicRoughnessTexture, h.uv, false);
+      roughness = roughness * t.y;
+      metallic = HAS_METALS ? metallic * t.z : 0.0;
+    }
+  }
+  return makeBsdfParams(baseColor, metallic, roughness);
+}
+
+SHARED_END
+#endif

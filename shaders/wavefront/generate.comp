@@ -1,0 +1,27 @@
+#version 460
+// Stage 1: one camera ray per path of the chunk; resets the path state and fills the first queue.
+#include "gpu/buffers.glsl"
+#include "shared/camera.h"
+#include "shared/rng.h"
+
+layout(local_size_x = kWorkgroupSize) in;
+
+void main() {
+  uint path = gl_GlobalInvocationID.x;
+  if (path >= pc.pathCount) return;
+  uint pixel = pc.pixelOffset + path;
+  uint rng = rngInit(pixel, pc.sampleIndex, pc.seed);
+  vec2 jitter = vec2(rngNextFloat(rng), rngNextFloat(rng));
+  rayOrigin[path] = camera.position;
+  rayDirection[path] = cameraRayDirection(camera, pixel % camera.width, pixel / camera.width, jitter);
+  throughput[path] = vec3(1.0);
+  radiance[path] = vec3(0.0);
+  misPdf[path] = 0.0;   // 0: the camera ray, whose emitter hits take no MIS weight
+  rngState[path] = rng;
+  rayQueue[path] = path;
+  if (path == 0u) {
+    queues.rayCount[0] = pc.pathCount;
+    queues.rayCount[1] = 0u;
+    queues.shadowCount = 0u;
+  }
+}

@@ -1,0 +1,14 @@
+#version 460
+// Stage 2: closest hit of every queued extension ray against the BVH.
+#include "gpu/buffers.glsl"
+#include "shared/bvh_traverse.h"
+#include "shared/constants.h"
+
+layout(local_size_x = kWorkgroupSize) in;
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= queues.rayCount[pc.queueIn]) return;
+  uint path = rayQueue[pc.queueIn * pc.pathCount + i];
+  hits[path] = traceClosest(rayOrigin[path], rayDirection[path], kFloatMax);
+}

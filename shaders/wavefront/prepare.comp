@@ -1,0 +1,34 @@
+#version 460
+// A single invocation between stages: turns a queue's counter into indirect dispatch arguments
+// (so the host never reads a count back) and resets the counters the next stage appends to.
+#include "gpu/buffers.glsl"
+
+layout(local_size_x = 1) in;
+
+const uint kPrepareRays = 0u;     // before intersect + shade
+const uint kPrepareShadows = 1u;  // before shadow
+
+// 64-bit ray counters as two uints: a single invocation runs this, so the carry needs no atomics.
+void addToCounter(inout uint counter[2], uint n) {
+  uint low = counter[0] + n;
+  if (low < counter[0]) counter[1] += 1u;
+  counter[0] = low;
+}
+
+void main() {
+  if (pc.mode == kPrepareRays) {
+    uint n = queues.rayCount[pc.queueIn];
+    queues.rayArgs.x = (n + kWorkgroupSize - 1u) / kWorkgroupSize;
+    queues.rayArgs.y = 1u;
+    queues.rayArgs.z = 1u;
+    queues.rayCount[1u - pc.queueIn] = 0u;
+    queues.shadowCount = 0u;
+    addToCounter(queues.extensionRays, n);
+  } else {
+    uint n = queues.shadowCount;
+    addToCounter(queues.shadowRays, n);
+    queues.shadowArgs.x = (n + kWorkgroupSize - 1u) / kWorkgroupSize;
+    queues.shadowArgs.y = 1u;
+    queues.shadowArgs.z = 1u;
+  }
+}
