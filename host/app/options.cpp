@@ -1,0 +1,304 @@
+#include "app/options.h"
+
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+
+#include "util/error.h"
+
+namespace mixtrace {
+namespace {
+
+// Methods --method accepts. Add new estimators here (and a one-line summary below for --help).
+const std::vector<std::string> kMethods = {"pt-uniform", "pt-power"};
+
+const std::map<std::string, std::string> kMethodSummaries = {
+    {"pt-uniform", "MIS path tracer, light picked uniformly"},
+    {"pt-power", "MIS path tracer, light picked by power"},
+};
+
+const std::vector<std::string> kBackends = {"vulkan", "cpu"};
+
+constexpr int kMaxImageSide = 16384;
+constexpr int kMaxDepthLimit = 64;
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+  return text;
+}
+
+bool contains(const std::vector<std::string>& items, const std::string& value) {
+  for (const std::string& item : items)
+    if (item == value) return true;
+  return false;
+}
+
+// Strict decimal integer: the whole string must be the number (no spaces, no trailing text).
+long long parseInteger(const std::string& option, const std::string& value, long long lo, long long hi,
+                       const std::string& expectation) {
+  const auto fail = [&] {
+    throw Error("invalid value '" + value + "' for " + option + ": expected " + expectation);
+  };
+  if (value.empty() || std::isspace(static_cast<unsigned char>(value[0]))) fail();
+  errno = 0;
+  char* end = nullptr;
+  const long long number = std::strtoll(value.c_str(), &end, 10);
+  if (errno == ERANGE || end != value.c_str() + value.size()) fail();
+  if (number < lo || number > hi) fail();
+  return number;
+}
+
+double parsePositiveSeconds(const std::string& option, const std::string& value) {
+  const auto fail = [&] {
+    throw Error("invalid value '" + value + "' for " + option + ": expected a number of seconds > 0");
+  };
+  if (value.empty() || std::isspace(static_cast<unsigned char>(value[0]))) fail();
+  errno = 0;
+  char* end = nullptr;
+  const double number = std::strtod(value.c_str(), &end);
+  if (errno == ERANGE || end != value.c_str() + value.size()) fail();
+  // strtod accepts "inf" and "nan"; neither is a usable time budget.
+  if (!std::isfinite(number) || !(number > 0.0)) fail();
+  return number;
+}
+
+std::string oneOf(const std::string& option, const std::string& value, const std::vector<std::string>& valid,
+                  const std::string& what) {
+  if (!contains(valid, value))
+    throw Error("unknown " + what + " '" + value + "' for " + option + " (valid: " + joined(valid) + ")");
+  return value;
+}
+
+// One row per option. `apply` receives the option's canonical long name for error messages.
+struct OptionSpec {
+  const char* name;
+  const char* shortName;  // nullptr when there is none
+  bool takesValue;
+  void (*apply)(RenderOptions& options, const std::string& name, const std::string& value);
+};
+
+const OptionSpec kOptionSpecs[] = {
+    {"--out", nullptr, true, [](RenderOptions& o, const std::string&, const std::string& v) { o.out = v; }},
+    {"--spp", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) {
+       o.spp = static_cast<int>(parseInteger(n, v, 1, 0x7fffffff, "an integer >= 1"));
+     }},
+    {"--time", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) { o.timeSeconds = parsePositiveSeconds(n, v); }},
+    {"--width", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) {
+       o.width = static_cast<int>(parseInteger(n, v, 1, kMaxImageSide, "an integer in 1..16384"));
+     }},
+    {"--height", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) {
+       o.height = static_cast<int>(parseInteger(n, v, 1, kMaxImageSide, "an integer in 1..16384"));
+     }},
+    {"--max-depth", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) {
+       o.maxDepth = static_cast<int>(parseInteger(n, v, 1, kMaxDepthLimit, "an integer in 1..64"));
+     }},
+    {"--method", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) { o.method = oneOf(n, v, kMethods, "method"); }},
+    {"--backend", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) {
+       o.backend = oneOf(n, v, kBackends, "backend");
+     }},
+    {"--seed", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) {
+       o.seed = static_cast<uint32_t>(parseInteger(n, v, 0, 0xffffffffLL, "an integer in 0..4294967295"));
+     }},
+    {"--stats", nullptr, true, [](RenderOptions& o, const std::string&, const std::string& v) { o.statsPath = v; }},
+    {"--device", nullptr, true, [](RenderOptions& o, const std::string&, const std::string& v) { o.device = v; }},
+    {"--no-png", nullptr, false, [](RenderOptions& o, const std::string&, const std::string&) { o.png = false; }},
+    {"--quiet", "-q", false, [](RenderOptions& o, const std::string&, const std::string&) { o.quiet = true; }},
+    {"--validation", nullptr, false,
+     [](RenderOptions& o, const std::string&, const std::string&) { o.validation = true; }},
+    {"--general-pipelines", nullptr, false,
+     [](RenderOptions& o, const std::string&, const std::string&) { o.generalPipelines = true; }},
+    {"--variance", nullptr, false, [](RenderOptions& o, const std::string&, const std::string&) { o.variance = true; }},
+};
+
+const OptionSpec* findOption(const std::string& name) {
+  for (const OptionSpec& spec : kOptionSpecs)
+    if (name == spec.name || (spec.shortName && name == spec.shortName)) return &spec;
+  return nullptr;
+}
+
+bool isHelpFlag(const std::string& arg) { return arg == "--help" || arg == "-h"; }
+
+// "-x..." / "--x..." is an option; "-3" or "-.5" is a (negative) number, which then fails the
+// range check of the option it was given to with a message naming that option.
+bool looksLikeOption(const std::string& arg) {
+  return arg.size() >= 2 && arg[0] == '-' && !std::isdigit(static_cast<unsigned char>(arg[1])) && arg[1] != '.';
+}
+
+bool endsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+ParsedCommandLine parseRender(const std::vector<std::string>& args) {
+  ParsedCommandLine result;
+  result.command = Command::Render;
+
+  // --help anywhere (before "--") wins over everything else, even over mistakes elsewhere.
+  for (const std::string& arg : args) {
+    if (arg == "--") break;
+    if (isHelpFlag(arg)) {
+      result.command = Command::Help;
+      return result;
+    }
+  }
+
+  RenderOptions& options = result.render;
+  bool onlyPositionals = false;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (!onlyPositionals && arg == "--") {
+      onlyPositionals = true;
+      continue;
+    }
+    if (!onlyPositionals && looksLikeOption(arg)) {
+      // Split "--opt=value"; short options never carry an inline value.
+      std::string name = arg;
+      std::string value;
+      bool hasInlineValue = false;
+      const size_t equals = arg.find('=');
+      if (arg.compare(0, 2, "--") == 0 && equals != std::string::npos) {
+        name = arg.substr(0, equals);
+        value = arg.substr(equals + 1);
+        hasInlineValue = true;
+      }
+      const OptionSpec* spec = findOption(name);
+      if (!spec) throw Error("unknown option '" + name + "' (see 'mixtrace render --help')");
+      if (!spec->takesValue) {
+        if (hasInlineValue) throw Error("option " + std::string(spec->name) + " takes no value");
+      } else if (!hasInlineValue) {
+        if (i + 1 >= args.size() || looksLikeOption(args[i + 1]))
+          throw Error("option " + std::string(spec->name) + " needs a value");
+        value = args[++i];
+      }
+      if (spec->takesValue && value.empty()) throw Error("option " + std::string(spec->name) + " needs a value");
+      spec->apply(options, spec->name, value);
+      continue;
+    }
+    if (!options.scene.empty())
+      throw Error("two scene paths given ('" + options.scene + "' and '" + arg + "'); render takes one SCENE");
+    if (arg.empty()) throw Error("empty scene path");
+    options.scene = arg;
+  }
+  return result;
+}
+
+}  // namespace
+
+const std::vector<std::string>& knownMethods() { return kMethods; }
+const std::vector<std::string>& knownBackends() { return kBackends; }
+
+ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i) args.emplace_back(argv[i] ? argv[i] : "");
+
+  ParsedCommandLine result;
+  if (args.empty() || isHelpFlag(args[0]) || args[0] == "help") {
+    result.command = Command::Help;
+    return result;
+  }
+  const std::string& command = args[0];
+  if (command == "--version") {
+    if (args.size() > 1) throw Error("unexpected argument '" + args[1] + "' after --version");
+    result.command = Command::Version;
+    return result;
+  }
+  if (command == "render") return parseRender(std::vector<std::string>(args.begin() + 1, args.end()));
+  if (looksLikeOption(command))
+    throw Error("unknown option '" + command + "' before a command (usage: mixtrace render [SCENE] [options])");
+  if (endsWith(command, ".gltf") || endsWith(command, ".glb"))
+    throw Error("unknown command '" + command + "' (did you mean 'mixtrace render " + command + "'?)");
+  throw Error("unknown command '" + command + "' (commands: render, help; see 'mixtrace --help')");
+}
+
+std::string helpText() {
+  const RenderOptions defaults;
+  std::ostringstream text;
+  text << "mixtrace " << MIXTRACE_VERSION
+       << " - a physically based path tracer (glTF 2.0 in, OpenEXR out)\n"
+          "\n"
+          "Usage:\n"
+          "  mixtrace render [SCENE] [options]  render SCENE (.gltf/.glb) to OpenEXR\n"
+          "  mixtrace help | --help | -h         print this text (or: render --help)\n"
+          "  mixtrace --version                  print the version\n"
+          "\n"
+          "Without SCENE, the default scene shipped with mixtrace is rendered.\n"
+          "Options take their value as '--opt value' or '--opt=value'.\n"
+          "\n"
+          "Output:\n"
+          "  --out FILE.exr       image to write (default: <scene stem>.exr in the\n"
+          "                       current directory); float RGB, with spp, render\n"
+          "                       time, method and scene stored in the header\n"
+          "  --no-png             do not write the 8-bit sRGB preview (by default\n"
+          "                       FILE.png is written next to FILE.exr)\n"
+          "  --variance           also store the per-pixel variance of the mean, as\n"
+          "                       EXR channels variance.R, variance.G, variance.B\n"
+          "  --stats FILE.json    write render statistics (timings, sample counts)\n"
+          "  -q, --quiet          no progress or information lines (errors still\n"
+          "                       go to stderr)\n"
+          "\n"
+          "Sampling:\n"
+          "  --spp N              samples per pixel, N >= 1 (default: "
+       << kDefaultSpp
+       << " when neither\n"
+          "                       --spp nor --time is given)\n"
+          "  --time SECONDS       render for SECONDS (> 0) of wall time; with --spp\n"
+          "                       as well, stop at whichever limit comes first\n"
+          "  --width W            image width in pixels, 1..16384 (default: "
+       << defaults.width
+       << ")\n"
+          "  --height H           image height in pixels, 1..16384 (default: "
+       << defaults.height
+       << ")\n"
+          "  --max-depth D        longest path, in segments, 1..64 (default: "
+       << defaults.maxDepth
+       << ").\n"
+          "                       Mitsuba's convention: 1 = only emitters seen\n"
+          "                       directly, 2 = direct lighting,\n"
+          "                       5 = up to four bounces\n"
+          "  --seed S             random seed, 0..4294967295 (default: "
+       << defaults.seed
+       << ")\n"
+          "  --method NAME        light transport method (default: "
+       << defaults.method << "):\n";
+  for (const std::string& method : kMethods) {
+    const auto summary = kMethodSummaries.find(method);
+    text << "                         " << method;
+    if (summary != kMethodSummaries.end())
+      text << std::string(method.size() < 12 ? 12 - method.size() : 1, ' ') << summary->second;
+    text << "\n";
+  }
+  text << "\n"
+          "Execution:\n"
+          "  --backend NAME       vulkan (the GPU wavefront renderer) or cpu (the\n"
+          "                       multithreaded CPU reference) (default: "
+       << defaults.backend
+       << ")\n"
+          "  --device INDEX|NAME  Vulkan device: its index or a substring of its\n"
+          "                       name (default: the first suitable device)\n"
+          "  --validation         enable the Vulkan validation layer (slow)\n"
+          "  --general-pipelines  do not specialise the GPU pipelines on the\n"
+          "                       scene's features (testing aid; same image)\n"
+          "\n"
+          "Examples:\n"
+          "  mixtrace render\n"
+          "      the default scene, "
+       << kDefaultSpp
+       << " spp, to <default scene>.exr and .png\n"
+          "  mixtrace render scenes/cornell_box.gltf --spp 256 --out cornell.exr\n"
+          "  mixtrace render scene.glb --time 10 --width 640 --height 480\n"
+          "  mixtrace render scene.glb --method=pt-uniform --backend=cpu --seed 7\n";
+  return text.str();
+}
+
+}  // namespace mixtrace

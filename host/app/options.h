@@ -1,0 +1,54 @@
+#pragma once
+// Command-line grammar of the mixtrace binary:
+//   mixtrace render [SCENE] [options]
+//   mixtrace help | --help | -h        (also: mixtrace render --help)
+//   mixtrace --version
+// Parsing only: nothing here prints, touches files or resolves defaults that need the scene.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mixtrace {
+
+enum class Command { Render, Help, Version };
+
+// Samples per pixel used when neither --spp nor --time is given. The help text quotes it, so the
+// renderer should use this constant rather than its own literal.
+constexpr int kDefaultSpp = 16;
+
+struct RenderOptions {
+  std::string scene;             // empty -> default scene (resolved by the caller)
+  std::string out;               // empty -> "<scene stem>.exr" in the current directory
+  int spp = -1;                  // -1: not given
+  double timeSeconds = -1.0;     // -1: not given; with spp too, stop at whichever comes first
+  int width = 320, height = 240;
+  int maxDepth = 5;              // Mitsuba convention, >= 1
+  std::string method = "pt-power";
+  std::string backend = "vulkan";  // vulkan | cpu
+  uint32_t seed = 0;
+  std::string statsPath;         // --stats FILE.json
+  std::string device;            // --device INDEX|NAME-SUBSTRING; empty = first suitable device
+  bool png = true;               // --no-png disables the preview
+  bool quiet = false;            // -q/--quiet
+  bool validation = false;       // --validation: Vulkan validation layer
+  bool generalPipelines = false; // --general-pipelines: no specialisation on scene features
+  bool variance = false;         // --variance: also write per-pixel variance of the mean
+};
+
+struct ParsedCommandLine {
+  Command command = Command::Help;
+  RenderOptions render;
+};
+
+// argv[0] is the program name and is ignored. Throws mixtrace::Error with a one-line message
+// naming the offending option or argument. Without any arguments the result is Command::Help.
+ParsedCommandLine parseCommandLine(int argc, const char* const* argv);
+
+// The full text printed by --help (ends with a newline).
+std::string helpText();
+
+// The values --method and --backend accept (the method list lives in options.cpp: kMethods).
+const std::vector<std::string>& knownMethods();
+const std::vector<std::string>& knownBackends();
+
+}  // namespace mixtrace

@@ -1,0 +1,162 @@
+#include "output/exr_io.h"
+
+#include <ImfChannelList.h>
+#include <ImfFloatAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfIntAttribute.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+
+#include <algorithm>
+#include <exception>
+#include <set>
+
+#include "util/error.h"
+
+namespace mixtrace {
+namespace {
+
+const char* const kColorChannels[3] = {"R", "G", "B"};
+const char* const kVarianceChannels[3] = {"variance.R", "variance.G", "variance.B"};
+
+// Attributes OpenEXR itself manages; they describe the file, not the render, so readExr leaves
+// them out of ExrMetadata and writeExr refuses to overwrite them.
+const std::set<std::string> kStructuralAttributes = {
+    "channels",          "compression",        "dataWindow", "displayWindow", "lineOrder",
+    "pixelAspectRatio",  "screenWindowCenter", "screenWindowWidth", "tiles", "type",
+    "name",              "version",            "chunkCount",
+};
+
+// OpenEXR messages sometimes span lines; Error promises one.
+std::string oneLine(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  while (!text.empty() && (text.back() == ' ' || text.back() == '.')) text.pop_back();
+  return text;
+}
+
+void checkImageSize(const Image& image, const std::string& what) {
+  if (image.width <= 0 || image.height <= 0)
+    throw Error("cannot write an empty " + what + " (" + std::to_string(image.width) + "x" +
+                std::to_string(image.height) + ")");
+  if (image.rgb.size() != image.pixelCount() * 3)
+    throw Error(what + " has " + std::to_string(image.rgb.size()) + " floats, expected " +
+                std::to_string(image.pixelCount() * 3));
+}
+
+// Describes `image` as three interleaved FLOAT slices. `originX/Y` is the data window's corner:
+// OpenEXR addresses pixels by absolute coordinates, so the base pointer is shifted back by it.
+void addSlices(Imf::FrameBuffer& frameBuffer, const char* const names[3], Image& image, int originX, int originY) {
+  const size_t xStride = 3 * sizeof(float);
+  const size_t yStride = xStride * static_cast<size_t>(image.width);
+  char* base = reinterpret_cast<char*>(image.rgb.data()) - static_cast<ptrdiff_t>(originX) * xStride -
+               static_cast<ptrdiff_t>(originY) * yStride;
+  for (int c = 0; c < 3; ++c)
+    frameBuffer.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride, 1, 1, 0.0));
+}
+
+}  // namespace
+
+void writeExr(const std::string& path, const Image& image, const ExrMetadata& meta, const Image* variance) {
+  checkImageSize(image, "image");
+  if (variance) {
+    checkImageSize(*variance, "variance image");
+    if (variance->width != image.width || variance->height != image.height)
+      throw Error("variance image is " + std::to_string(variance->width) + "x" + std::to_string(variance->height) +
+                  " but the image is " + std::to_string(image.width) + "x" + std::to_string(image.height));
+  }
+
+  Imf::Header header(image.width, image.height);
+  header.compression() = Imf::ZIP_COMPRESSION;  // lossless: the values feed statistical tests
+  const auto checkName = [&](const std::string& name) {
+    if (name.empty() || kStructuralAttributes.count(name) || header.find(name) != header.end())
+      throw Error("EXR attribute name '" + name + "' is empty or reserved");
+  };
+  for (const auto& [name, value] : meta.strings) {
+    checkName(name);
+    header.insert(name, Imf::StringAttribute(value));
+  }
+  for (const auto& [name, value] : meta.ints) {
+    checkName(name);
+    header.insert(name, Imf::IntAttribute(value));
+  }
+  for (const auto& [name, value] : meta.floats) {
+    checkName(name);
+    header.insert(name, Imf::FloatAttribute(value));
+  }
+
+  // Slices need mutable pointers even for writing; OpenEXR only reads through them here.
+  Imf::FrameBuffer frameBuffer;
+  for (const char* name : kColorChannels) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+  addSlices(frameBuffer, kColorChannels, const_cast<Image&>(image), 0, 0);
+  if (variance) {
+    for (const char* name : kVarianceChannels) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    addSlices(frameBuffer, kVarianceChannels, const_cast<Image&>(*variance), 0, 0);
+  }
+
+  try {
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(frameBuffer);
+    file.writePixels(image.height);
+  } catch (const std::exception& e) {
+    throw Error("cannot write EXR '" + path + "': " + oneLine(e.what()));
+  }
+}
+
+Image readExr(const std::string& path, ExrMetadata* meta, Image* variance) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imf::Header& header = file.header();
+    const Imath::Box2i dataWindow = header.dataWindow();
+    const int width = dataWindow.max.x - dataWindow.min.x + 1;
+    const int height = dataWindow.max.y - dataWindow.min.y + 1;
+    if (width <= 0 || height <= 0) throw Error("EXR '" + path + "' has an empty data window");
+
+    const Imf::ChannelList& channels = header.channels();
+    for (const char* name : kColorChannels)
+      if (!channels.findChannel(name)) throw Error("EXR '" + path + "' has no " + name + " channel");
+
+    Image image(width, height);
+    Imf::FrameBuffer frameBuffer;
+    addSlices(frameBuffer, kColorChannels, image, dataWindow.min.x, dataWindow.min.y);
+
+    if (variance) {
+      int present = 0;
+      for (const char* name : kVarianceChannels) present += channels.findChannel(name) != nullptr;
+      if (present == 3) {
+        *variance = Image(width, height);
+        addSlices(frameBuffer, kVarianceChannels, *variance, dataWindow.min.x, dataWindow.min.y);
+      } else if (present == 0) {
+        *variance = Image();
+      } else {
+        throw Error("EXR '" + path + "' has only some of the variance.R/G/B channels");
+      }
+    }
+
+    if (meta) {
+      *meta = ExrMetadata();
+      for (auto it = header.begin(); it != header.end(); ++it) {
+        const std::string name = it.name();
+        if (kStructuralAttributes.count(name)) continue;
+        const Imf::Attribute& attribute = it.attribute();
+        if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&attribute))
+          meta->strings[name] = text->value();
+        else if (const auto* integer = dynamic_cast<const Imf::IntAttribute*>(&attribute))
+          meta->ints[name] = integer->value();
+        else if (const auto* real = dynamic_cast<const Imf::FloatAttribute*>(&attribute))
+          meta->floats[name] = real->value();
+      }
+    }
+
+    file.setFrameBuffer(frameBuffer);
+    file.readPixels(dataWindow.min.y, dataWindow.max.y);
+    return image;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error("cannot read EXR '" + path + "': " + oneLine(e.what()));
+  }
+}
+
+}  // namespace mixtrace

@@ -1,0 +1,52 @@
+#include "output/png_preview.h"
+
+#include <cmath>
+#include <filesystem>
+#include <vector>
+
+#include "util/error.h"
+
+// libtinygltf imports the stb writer from libstb.so rather than exporting it, and mixtrace_core
+// does not link libstb, so the writer is compiled here — static, so it cannot clash with the
+// copy in libstb.so that tinygltf loads.
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#include <stb/stb_image_write.h>
+#pragma GCC diagnostic pop
+
+namespace mixtrace {
+namespace {
+
+// IEC 61966-2-1 sRGB encoding: linear segment below 0.0031308, power 1/2.4 above.
+float srgbOetf(float linear) {
+  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+}  // namespace
+
+unsigned char linearToSrgb8(float linear, float exposure) {
+  if (!std::isfinite(linear)) return 0;
+  float value = linear * exposure;
+  if (!(value > 0.0f)) return 0;  // also catches NaN from a non-finite exposure
+  if (value > 1.0f) value = 1.0f;
+  return static_cast<unsigned char>(std::lround(srgbOetf(value) * 255.0f));
+}
+
+void writePngPreview(const std::string& path, const Image& image, float exposure) {
+  if (image.width <= 0 || image.height <= 0 || image.rgb.size() != image.pixelCount() * 3)
+    throw Error("cannot write PNG '" + path + "': image is empty or its size does not match its pixels");
+  std::vector<unsigned char> bytes(image.rgb.size());
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = linearToSrgb8(image.rgb[i], exposure);
+  const int rowBytes = image.width * 3;
+  if (!stbi_write_png(path.c_str(), image.width, image.height, 3, bytes.data(), rowBytes))
+    throw Error("cannot write PNG '" + path + "'");
+}
+
+std::string defaultPreviewPath(const std::string& exrPath) {
+  return std::filesystem::path(exrPath).replace_extension(".png").string();
+}
+
+}  // namespace mixtrace

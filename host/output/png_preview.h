@@ -1,0 +1,20 @@
+#pragma once
+// An 8-bit sRGB PNG next to the EXR, for a quick look; the EXR stays the result.
+#include <string>
+
+#include "output/image.h"
+
+namespace mixtrace {
+
+// Scales linear values by `exposure`, clamps to [0, 1], applies the exact piecewise sRGB curve
+// and rounds to 8 bits. Non-finite input values (NaN, +-Inf) become black, so a broken pixel
+// is visible rather than written as garbage. Throws mixtrace::Error when the file cannot be written.
+void writePngPreview(const std::string& path, const Image& image, float exposure = 1.0f);
+
+// `exrPath` with its extension replaced by .png (appended when it has none).
+std::string defaultPreviewPath(const std::string& exrPath);
+
+// The 8-bit value writePngPreview stores for one linear channel value (exposed for tests).
+unsigned char linearToSrgb8(float linear, float exposure = 1.0f);
+
+}  // namespace mixtrace

@@ -1,0 +1,220 @@
+// Command-line parsing: defaults, both value syntaxes, every error class, help and version.
+#include "app/options.h"
+
+#include <gtest/gtest.h>
+
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "util/error.h"
+
+namespace mixtrace {
+namespace {
+
+ParsedCommandLine parse(std::initializer_list<const char*> args) {
+  std::vector<const char*> argv = {"mixtrace"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return parseCommandLine(static_cast<int>(argv.size()), argv.data());
+}
+
+// Parses, expects an Error, and returns its message.
+std::string errorOf(std::initializer_list<const char*> args) {
+  try {
+    parse(args);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no Error thrown";
+  return "";
+}
+
+void expectOneLineMentioning(const std::string& message, const std::string& needle) {
+  EXPECT_NE(message.find(needle), std::string::npos) << "message: " << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << "message: " << message;
+  EXPECT_FALSE(message.empty());
+}
+
+TEST(Options, RenderDefaults) {
+  const ParsedCommandLine parsed = parse({"render"});
+  ASSERT_EQ(parsed.command, Command::Render);
+  const RenderOptions& o = parsed.render;
+  EXPECT_EQ(o.scene, "");
+  EXPECT_EQ(o.out, "");
+  EXPECT_EQ(o.spp, -1);
+  EXPECT_EQ(o.timeSeconds, -1.0);
+  EXPECT_EQ(o.width, 320);
+  EXPECT_EQ(o.height, 240);
+  EXPECT_EQ(o.maxDepth, 5);
+  EXPECT_EQ(o.method, "pt-power");
+  EXPECT_EQ(o.backend, "vulkan");
+  EXPECT_EQ(o.seed, 0u);
+  EXPECT_EQ(o.statsPath, "");
+  EXPECT_EQ(o.device, "");
+  EXPECT_TRUE(o.png);
+  EXPECT_FALSE(o.quiet);
+  EXPECT_FALSE(o.validation);
+  EXPECT_FALSE(o.generalPipelines);
+  EXPECT_FALSE(o.variance);
+}
+
+TEST(Options, EveryOptionWithSeparateValues) {
+  const ParsedCommandLine parsed =
+      parse({"render", "scene.gltf", "--out", "x.exr", "--spp", "64", "--time", "2.5", "--width", "640", "--height",
+             "480", "--max-depth", "8", "--method", "pt-uniform", "--backend", "cpu", "--seed", "4294967295",
+             "--stats", "s.json", "--device", "llvmpipe", "--no-png", "-q", "--validation", "--general-pipelines",
+             "--variance"});
+  ASSERT_EQ(parsed.command, Command::Render);
+  const RenderOptions& o = parsed.render;
+  EXPECT_EQ(o.scene, "scene.gltf");
+  EXPECT_EQ(o.out, "x.exr");
+  EXPECT_EQ(o.spp, 64);
+  EXPECT_DOUBLE_EQ(o.timeSeconds, 2.5);
+  EXPECT_EQ(o.width, 640);
+  EXPECT_EQ(o.height, 480);
+  EXPECT_EQ(o.maxDepth, 8);
+  EXPECT_EQ(o.method, "pt-uniform");
+  EXPECT_EQ(o.backend, "cpu");
+  EXPECT_EQ(o.seed, 4294967295u);
+  EXPECT_EQ(o.statsPath, "s.json");
+  EXPECT_EQ(o.device, "llvmpipe");
+  EXPECT_FALSE(o.png);
+  EXPECT_TRUE(o.quiet);
+  EXPECT_TRUE(o.validation);
+  EXPECT_TRUE(o.generalPipelines);
+  EXPECT_TRUE(o.variance);
+}
+
+TEST(Options, EqualsSyntaxAndSceneAfterOptions) {
+  const ParsedCommandLine parsed =
+      parse({"render", "--spp=7", "--out=a=b.exr", "--max-depth=1", "--method=pt-power", "--quiet", "s.glb",
+             "--device=0", "--time=0.25"});
+  const RenderOptions& o = parsed.render;
+  EXPECT_EQ(o.spp, 7);
+  EXPECT_EQ(o.out, "a=b.exr");  // only the first '=' separates
+  EXPECT_EQ(o.maxDepth, 1);
+  EXPECT_EQ(o.method, "pt-power");
+  EXPECT_TRUE(o.quiet);
+  EXPECT_EQ(o.scene, "s.glb");
+  EXPECT_EQ(o.device, "0");
+  EXPECT_DOUBLE_EQ(o.timeSeconds, 0.25);
+}
+
+TEST(Options, DoubleDashMakesTheRestPositional) {
+  EXPECT_EQ(parse({"render", "--", "-odd-name.gltf"}).render.scene, "-odd-name.gltf");
+}
+
+TEST(Options, HelpForms) {
+  EXPECT_EQ(parse({}).command, Command::Help);
+  EXPECT_EQ(parse({"--help"}).command, Command::Help);
+  EXPECT_EQ(parse({"-h"}).command, Command::Help);
+  EXPECT_EQ(parse({"help"}).command, Command::Help);
+  EXPECT_EQ(parse({"render", "--help"}).command, Command::Help);
+  EXPECT_EQ(parse({"render", "scene.gltf", "-h"}).command, Command::Help);
+  // --help wins over a mistake elsewhere on the line.
+  EXPECT_EQ(parse({"render", "--spp", "zero", "--help"}).command, Command::Help);
+}
+
+TEST(Options, Version) {
+  EXPECT_EQ(parse({"--version"}).command, Command::Version);
+  expectOneLineMentioning(errorOf({"--version", "extra"}), "extra");
+}
+
+TEST(Options, HelpTextDocumentsOptionsDefaultsAndExamples) {
+  const std::string help = helpText();
+  for (const char* needle :
+       {"mixtrace render [SCENE] [options]", "--out", "--spp", "--time", "--width", "--height", "--max-depth",
+        "--method", "--backend", "--seed", "--stats", "--device", "--no-png", "--quiet", "-q", "--validation",
+        "--general-pipelines", "--variance", "--help", "--version", "pt-uniform", "pt-power", "vulkan", "cpu",
+        "default: 16", "default: 320", "default: 240", "default: 5", "default: pt-power", "Mitsuba",
+        "1 = only emitters seen", "2 = direct lighting", "5 = up to four bounces", "Examples:"})
+    EXPECT_NE(help.find(needle), std::string::npos) << "help text lacks: " << needle;
+  EXPECT_EQ(kDefaultSpp, 16);
+  EXPECT_EQ(help.back(), '\n');
+}
+
+TEST(Options, UnknownOption) {
+  expectOneLineMentioning(errorOf({"render", "--spd", "4"}), "--spd");
+  expectOneLineMentioning(errorOf({"render", "--spd=4"}), "--spd");
+  expectOneLineMentioning(errorOf({"render", "-x"}), "-x");
+  expectOneLineMentioning(errorOf({"--spp", "4"}), "--spp");
+}
+
+TEST(Options, MissingValue) {
+  for (const char* option : {"--out", "--spp", "--time", "--width", "--height", "--max-depth", "--method",
+                             "--backend", "--seed", "--stats", "--device"}) {
+    expectOneLineMentioning(errorOf({"render", option}), option);
+    // Followed by another option: that option is not taken as the value.
+    expectOneLineMentioning(errorOf({"render", option, "--quiet"}), option);
+    // Empty value after '='.
+    const std::string empty = std::string(option) + "=";
+    expectOneLineMentioning(errorOf({"render", empty.c_str()}), option);
+  }
+}
+
+TEST(Options, FlagGivenAValue) { expectOneLineMentioning(errorOf({"render", "--no-png=1"}), "--no-png"); }
+
+TEST(Options, NonNumericValues) {
+  expectOneLineMentioning(errorOf({"render", "--spp", "many"}), "--spp");
+  expectOneLineMentioning(errorOf({"render", "--spp", "12abc"}), "--spp");
+  expectOneLineMentioning(errorOf({"render", "--spp", "1.5"}), "--spp");
+  expectOneLineMentioning(errorOf({"render", "--spp", " 4"}), "--spp");
+  expectOneLineMentioning(errorOf({"render", "--time", "soon"}), "--time");
+  expectOneLineMentioning(errorOf({"render", "--time", "nan"}), "--time");
+  expectOneLineMentioning(errorOf({"render", "--time", "inf"}), "--time");
+  expectOneLineMentioning(errorOf({"render", "--width", "wide"}), "--width");
+  expectOneLineMentioning(errorOf({"render", "--height", "0x10"}), "--height");
+  expectOneLineMentioning(errorOf({"render", "--max-depth", "deep"}), "--max-depth");
+  expectOneLineMentioning(errorOf({"render", "--seed", "seed"}), "--seed");
+}
+
+TEST(Options, OutOfRangeNumbers) {
+  expectOneLineMentioning(errorOf({"render", "--spp", "0"}), "--spp");
+  expectOneLineMentioning(errorOf({"render", "--spp", "-3"}), "--spp");
+  expectOneLineMentioning(errorOf({"render", "--spp", "99999999999999999999"}), "--spp");
+  expectOneLineMentioning(errorOf({"render", "--time", "0"}), "--time");
+  expectOneLineMentioning(errorOf({"render", "--time", "-1"}), "--time");
+  expectOneLineMentioning(errorOf({"render", "--width", "0"}), "--width");
+  expectOneLineMentioning(errorOf({"render", "--width", "16385"}), "--width");
+  expectOneLineMentioning(errorOf({"render", "--height", "0"}), "--height");
+  expectOneLineMentioning(errorOf({"render", "--height", "16385"}), "--height");
+  expectOneLineMentioning(errorOf({"render", "--max-depth", "0"}), "--max-depth");
+  expectOneLineMentioning(errorOf({"render", "--max-depth", "65"}), "--max-depth");
+  expectOneLineMentioning(errorOf({"render", "--seed", "-1"}), "--seed");
+  expectOneLineMentioning(errorOf({"render", "--seed", "4294967296"}), "--seed");
+  // The bounds themselves are accepted.
+  const RenderOptions edges =
+      parse({"render", "--width", "16384", "--height", "1", "--max-depth", "64", "--spp", "1"}).render;
+  EXPECT_EQ(edges.width, 16384);
+  EXPECT_EQ(edges.height, 1);
+  EXPECT_EQ(edges.maxDepth, 64);
+  EXPECT_EQ(edges.spp, 1);
+}
+
+TEST(Options, UnknownMethodOrBackendListsTheValidOnes) {
+  const std::string method = errorOf({"render", "--method", "bdpt"});
+  expectOneLineMentioning(method, "--method");
+  expectOneLineMentioning(method, "bdpt");
+  for (const std::string& valid : knownMethods()) expectOneLineMentioning(method, valid);
+
+  const std::string backend = errorOf({"render", "--backend=metal"});
+  expectOneLineMentioning(backend, "--backend");
+  expectOneLineMentioning(backend, "metal");
+  expectOneLineMentioning(backend, "vulkan");
+  expectOneLineMentioning(backend, "cpu");
+}
+
+TEST(Options, UnknownCommand) {
+  expectOneLineMentioning(errorOf({"draw"}), "draw");
+  // A scene given without the command gets a hint.
+  expectOneLineMentioning(errorOf({"scene.gltf"}), "mixtrace render scene.gltf");
+}
+
+TEST(Options, TwoScenePaths) {
+  const std::string message = errorOf({"render", "a.gltf", "--spp", "4", "b.gltf"});
+  expectOneLineMentioning(message, "a.gltf");
+  expectOneLineMentioning(message, "b.gltf");
+}
+
+}  // namespace
+}  // namespace mixtrace
