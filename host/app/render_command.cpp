@@ -23,7 +23,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-constexpr int kDefaultSpp = 16;
 
 LightSelection selectionFor(const std::string& method) {
   return method == "pt-uniform" ? LightSelection::Uniform : LightSelection::Power;
