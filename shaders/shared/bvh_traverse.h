@@ -38,7 +38,8 @@ const float kBvhMiss = 3.0e38f;
 const float kBvhTinyDirection = 1.0e-20f;
 // The slab test's exit distance is scaled up by a few ulps (Ize, "Robust BVH Ray Traversal",
 // JCGT 2013: 1 + 2 * gamma(3)) so rounding can never cull a box whose triangles the ray hits,
-// e.g. flat boxes around axis-aligned triangles.
+// e.g. flat boxes around axis-aligned triangles. (The builder also pads every box by a few
+// ulps of its coordinates, for the error of the triangle test itself.)
 const float kBvhExitScale = 1.0000004f;
 
 SHARED_FN float bvhSafeComponent(float d) {
@@ -51,7 +52,7 @@ SHARED_FN vec3 bvhSafeReciprocal(vec3 d) {
 }
 
 // Distance at which the ray enters the box (0 when it starts inside), or kBvhMiss when it misses
-// the box or reaches it only at or beyond tFar.
+// the box or reaches it only beyond tFar (give or take the rounding slack of kBvhExitScale).
 SHARED_FN float bvhBoxEntry(vec3 boundsMin, vec3 boundsMax, vec3 origin, vec3 invDir, float tFar) {
   // (b - o) * invDir rather than b * invDir - o * invDir: the latter cancels catastrophically
   // when the origin is far from the world origin but close to the box.
