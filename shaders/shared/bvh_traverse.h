@@ -1,0 +1,221 @@
+// Software BVH traversal (closest hit and any hit), written once for the GPU intersect/shadow
+// passes and the CPU renderer. Walks the flattened BVH of host/bvh/bvh.h.
+//
+// The includer defines, before including this header:
+//   BVH_NODE(i)      -> the BvhNode at index i
+//   BVH_TRIANGLE(i)  -> the TriangleGeom at BVH-order index i
+// In C++ the functions have internal linkage (an anonymous namespace inside
+// mixtrace::shared), so two translation units that bind the macros to different buffers do not
+// collide under the one-definition rule.
+//
+// Conventions: rays start exactly at `origin` (callers offset origins off surfaces); a hit
+// counts when 0 < t < tMax, with t in units of `direction` (which need not be normalised).
+// HitRecord.u/.v are the barycentric weights of v1 and v2.
+//
+// Speed: both children's boxes are tested at their parent, the nearer is entered at once and
+// the farther pushed with its entry distance, so the stack only holds boxes the ray does enter
+// and the closest-hit search drops those that start beyond the best hit so far.
+#ifndef MIXTRACE_SHARED_BVH_TRAVERSE_H
+#define MIXTRACE_SHARED_BVH_TRAVERSE_H
+#include "shared/layouts.h"
+
+#if !defined(BVH_NODE) || !defined(BVH_TRIANGLE)
+#error "define BVH_NODE(i) and BVH_TRIANGLE(i) before including shared/bvh_traverse.h"
+#endif
+
+SHARED_BEGIN
+#ifdef __cplusplus
+namespace {
+#endif
+
+// One entry per tree level suffices; the builder caps the depth at 60 (kBvhMaxDepth).
+const uint kBvhStackSize = 64u;
+// Box entry distance meaning "missed" (any real entry is below it).
+const float kBvhMiss = 3.0e38f;
+// Direction components smaller than this are replaced by it (keeping the sign), so the
+// reciprocal stays finite and the slab test never forms 0 * inf = NaN. A ray that moves 1e-20
+// per unit along an axis is parallel to it for every box at scene scales of 1e-3 .. 1e3.
+const float kBvhTinyDirection = 1.0e-20f;
+// The slab test's exit distance is scaled up by a few ulps (Ize, "Robust BVH Ray Traversal",
+// JCGT 2013: 1 + 2 * gamma(3)) so rounding can never cull a box whose triangles the ray hits,
+// e.g. flat boxes around axis-aligned triangles. (The builder also pads every box by a few
+// ulps of its coordinates, for the error of the triangle test itself.)
+const float kBvhExitScale = 1.0000004f;
+
+SHARED_FN float bvhSafeComponent(float d) {
+  return abs(d) < kBvhTinyDirection ? (d < 0.0f ? -kBvhTinyDirection : kBvhTinyDirection) : d;
+}
+
+SHARED_FN vec3 bvhSafeReciprocal(vec3 d) {
+  return vec3(1.0f / bvhSafeComponent(d.x), 1.0f / bvhSafeComponent(d.y),
+              1.0f / bvhSafeComponent(d.z));
+}
+
+// Distance at which the ray enters the box (0 when it starts inside), or kBvhMiss when it misses
+// the box or reaches it only beyond tFar (give or take the rounding slack of kBvhExitScale).
+SHARED_FN float bvhBoxEntry(vec3 boundsMin, vec3 boundsMax, vec3 origin, vec3 invDir, float tFar) {
+  // (b - o) * invDir rather than b * invDir - o * invDir: the latter cancels catastrophically
+  // when the origin is far from the world origin but close to the box.
+  vec3 t0 = (boundsMin - origin) * invDir;
+  vec3 t1 = (boundsMax - origin) * invDir;
+  vec3 tLow = min(t0, t1);
+  vec3 tHigh = max(t0, t1);
+  float enter = max(max(tLow.x, tLow.y), max(tLow.z, 0.0f));
+  float exit = min(min(tHigh.x, tHigh.y), min(tHigh.z, tFar)) * kBvhExitScale;
+  return enter <= exit ? enter : kBvhMiss;
+}
+
+// Möller–Trumbore with the division deferred until the ray is known to cross the triangle:
+// u, v and t are first formed scaled by the determinant and compared against it after flipping
+// to a positive determinant. That needs no epsilon (which would be wrong at some scene scale):
+// a ray parallel to the triangle (det == 0, as for every ray against a zero-area triangle,
+// stored with zero edges) is rejected exactly, and near-parallel rays end up with
+// barycentrics outside [0, 1] or a t beyond tMax. t is computed independently of tMax and then
+// compared with it, so for one ray every caller sees the same t for a triangle: traceAny(tMax)
+// is exactly "the closest hit has t < tMax". Edges use >= / <= on both sides, so a ray through
+// a shared edge is kept by at least one of its triangles up to rounding.
+SHARED_FN bool bvhIntersectTriangle(TriangleGeom tri, vec3 origin, vec3 direction, float tMax,
+                                    OUT(float) t, OUT(float) u, OUT(float) v) {
+  vec3 p = cross(direction, tri.e2);
+  float det = dot(tri.e1, p);
+  float flip = det < 0.0f ? -1.0f : 1.0f;
+  float absDet = det * flip;
+  vec3 s = origin - tri.v0;
+  float uScaled = dot(s, p) * flip;
+  if (uScaled < 0.0f || uScaled > absDet) return false;
+  vec3 q = cross(s, tri.e1);
+  float vScaled = dot(direction, q) * flip;
+  float tScaled = dot(tri.e2, q) * flip;
+  if (vScaled < 0.0f || uScaled + vScaled > absDet || tScaled <= 0.0f || absDet == 0.0f)
+    return false;
+  float invDet = 1.0f / absDet;
+  t = tScaled * invDet;
+  u = uScaled * invDet;
+  v = vScaled * invDet;
+  return t > 0.0f && t < tMax;
+}
+
+// Closest hit with 0 < t < tMax; triangle == kNoHit when nothing is hit (t is then tMax).
+SHARED_FN HitRecord traceClosest(vec3 origin, vec3 direction, float tMax) {
+  HitRecord hit;
+  hit.t = tMax;
+  hit.triangle = kNoHit;
+  hit.u = 0.0f;
+  hit.v = 0.0f;
+  vec3 invDir = bvhSafeReciprocal(direction);
+  BvhNode node = BVH_NODE(0u);
+  if (bvhBoxEntry(node.boundsMin, node.boundsMax, origin, invDir, tMax) >= kBvhMiss) return hit;
+
+  uint stack[kBvhStackSize];
+  float stackEntry[kBvhStackSize];
+  uint stackSize = 0u;
+  while (true) {
+    if (node.triCount > 0u) {
+      uint end = node.leftOrFirst + node.triCount;
+      for (uint i = node.leftOrFirst; i < end; ++i) {
+        float t = 0.0f;
+        float u = 0.0f;
+        float v = 0.0f;
+        if (bvhIntersectTriangle(BVH_TRIANGLE(i), origin, direction, hit.t, t, u, v)) {
+          hit.t = t;
+          hit.triangle = i;
+          hit.u = u;
+          hit.v = v;
+        }
+      }
+    } else {
+      uint nearIndex = node.leftOrFirst;
+      uint farIndex = nearIndex + 1u;
+      BvhNode nearNode = BVH_NODE(nearIndex);
+      BvhNode farNode = BVH_NODE(farIndex);
+      float nearEntry = bvhBoxEntry(nearNode.boundsMin, nearNode.boundsMax, origin, invDir, hit.t);
+      float farEntry = bvhBoxEntry(farNode.boundsMin, farNode.boundsMax, origin, invDir, hit.t);
+      if (farEntry < nearEntry) {
+        BvhNode swapNode = nearNode;
+        nearNode = farNode;
+        farNode = swapNode;
+        float swapEntry = nearEntry;
+        nearEntry = farEntry;
+        farEntry = swapEntry;
+        uint swapIndex = nearIndex;
+        nearIndex = farIndex;
+        farIndex = swapIndex;
+      }
+      if (nearEntry < kBvhMiss) {
+        if (farEntry < kBvhMiss) {
+          stack[stackSize] = farIndex;
+          stackEntry[stackSize] = farEntry;
+          ++stackSize;
+        }
+        node = nearNode;
+        continue;
+      }
+    }
+    // Resume with the most recently pushed box that still starts before the closest hit.
+    bool resumed = false;
+    while (stackSize > 0u) {
+      --stackSize;
+      if (stackEntry[stackSize] <= hit.t * kBvhExitScale) {
+        node = BVH_NODE(stack[stackSize]);
+        resumed = true;
+        break;
+      }
+    }
+    if (!resumed) break;
+  }
+  return hit;
+}
+
+// True when some triangle is hit with 0 < t < tMax (shadow rays); stops at the first one found.
+SHARED_FN bool traceAny(vec3 origin, vec3 direction, float tMax) {
+  vec3 invDir = bvhSafeReciprocal(direction);
+  BvhNode node = BVH_NODE(0u);
+  if (bvhBoxEntry(node.boundsMin, node.boundsMax, origin, invDir, tMax) >= kBvhMiss) return false;
+
+  uint stack[kBvhStackSize];
+  uint stackSize = 0u;
+  while (true) {
+    if (node.triCount > 0u) {
+      uint end = node.leftOrFirst + node.triCount;
+      for (uint i = node.leftOrFirst; i < end; ++i) {
+        float t = 0.0f;
+        float u = 0.0f;
+        float v = 0.0f;
+        if (bvhIntersectTriangle(BVH_TRIANGLE(i), origin, direction, tMax, t, u, v)) return true;
+      }
+    } else {
+      uint nearIndex = node.leftOrFirst;
+      uint farIndex = nearIndex + 1u;
+      BvhNode nearNode = BVH_NODE(nearIndex);
+      BvhNode farNode = BVH_NODE(farIndex);
+      float nearEntry = bvhBoxEntry(nearNode.boundsMin, nearNode.boundsMax, origin, invDir, tMax);
+      float farEntry = bvhBoxEntry(farNode.boundsMin, farNode.boundsMax, origin, invDir, tMax);
+      // Nearer first: blockers near the origin are found sooner on average.
+      if (farEntry < nearEntry) {
+        nearNode = farNode;
+        float swapEntry = nearEntry;
+        nearEntry = farEntry;
+        farEntry = swapEntry;
+        farIndex = nearIndex;
+      }
+      if (nearEntry < kBvhMiss) {
+        if (farEntry < kBvhMiss) {
+          stack[stackSize] = farIndex;
+          ++stackSize;
+        }
+        node = nearNode;
+        continue;
+      }
+    }
+    if (stackSize == 0u) break;
+    --stackSize;
+    node = BVH_NODE(stack[stackSize]);
+  }
+  return false;
+}
+
+#ifdef __cplusplus
+}  // namespace
+#endif
+SHARED_END
+#endif
