@@ -23,10 +23,7 @@
 #error "define BVH_NODE(i) and BVH_TRIANGLE(i) before including shared/bvh_traverse.h"
 #endif
 
-SHARED_BEGIN
-#ifdef __cplusplus
-namespace {
-#endif
+SHARED_BEGIN_WITH_BUFFERS
 
 // One entry per tree level suffices; the builder caps the depth at 60 (kBvhMaxDepth).
 const uint kBvhStackSize = 64u;
@@ -214,8 +211,5 @@ SHARED_FN bool traceAny(vec3 origin, vec3 direction, float tMax) {
   return false;
 }
 
-#ifdef __cplusplus
-}  // namespace
-#endif
-SHARED_END
+SHARED_END_WITH_BUFFERS
 #endif

@@ -20,12 +20,18 @@
   using std::sqrt; using std::abs; using std::pow; using std::exp; using std::log; using std::sin; \
   using std::cos; using std::tan; using std::acos; using std::asin; using std::floor; using std::ceil;
 #define SHARED_END } }
+// For headers that read buffers through includer-defined macros (BVH_NODE, LIGHT, ...): internal
+// linkage in C++, so two translation units binding the macros differently never collide (ODR).
+#define SHARED_BEGIN_WITH_BUFFERS SHARED_BEGIN namespace {
+#define SHARED_END_WITH_BUFFERS } SHARED_END
 #define SHARED_FN inline
 #define INOUT(T) T&
 #define OUT(T) T&
 #else
 #define SHARED_BEGIN
 #define SHARED_END
+#define SHARED_BEGIN_WITH_BUFFERS
+#define SHARED_END_WITH_BUFFERS
 #define SHARED_FN
 #define INOUT(T) inout T
 #define OUT(T) out T

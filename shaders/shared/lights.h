@@ -12,7 +12,7 @@
 #include "shared/layouts.h"
 #include "shared/sampling.h"
 #include "shared/texture.h"
-SHARED_BEGIN
+SHARED_BEGIN_WITH_BUFFERS
 
 struct LightSample {
   vec3 direction;   // unit, from the shading point towards the light
@@ -153,5 +153,5 @@ SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter
   return false;
 }
 
-SHARED_END
+SHARED_END_WITH_BUFFERS
 #endif

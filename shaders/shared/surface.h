@@ -7,7 +7,7 @@
 #include "shared/dialect.h"
 #include "shared/layouts.h"
 #include "shared/texture.h"
-SHARED_BEGIN
+SHARED_BEGIN_WITH_BUFFERS
 
 struct SurfaceHit {
   vec3 position;
@@ -56,5 +56,5 @@ SHARED_FN BsdfParams surfaceBsdf(SurfaceHit h) {
   return makeBsdfParams(baseColor, metallic, roughness);
 }
 
-SHARED_END
+SHARED_END_WITH_BUFFERS
 #endif

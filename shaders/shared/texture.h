@@ -7,7 +7,7 @@
 #include "shared/dialect.h"
 #include "shared/layouts.h"
 #include "shared/sampling.h"
-SHARED_BEGIN
+SHARED_BEGIN_WITH_BUFFERS
 
 SHARED_FN int wrapTexelCoord(int i, int n, uint mode) {
   if (mode == kWrapClamp) return clamp(i, 0, n - 1);
@@ -49,5 +49,5 @@ SHARED_FN vec4 sampleTexture(int index, vec2 uv, bool srgb) {
   return mix(a, b, fy);
 }
 
-SHARED_END
+SHARED_END_WITH_BUFFERS
 #endif
