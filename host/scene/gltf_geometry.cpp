@@ -1,0 +1,162 @@
+// One glTF mesh primitive instance -> world-space triangles.
+#include <cmath>
+#include <utility>
+
+#include "scene/gltf_internal.h"
+
+namespace mixtrace {
+namespace gltf {
+namespace {
+
+bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+int attributeAccessor(const tinygltf::Primitive& primitive, const char* name) {
+  const auto it = primitive.attributes.find(name);
+  return it == primitive.attributes.end() ? -1 : it->second;
+}
+
+// The primitive's vertices, already in world space.
+struct WorldVertices {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // empty: the file has none; NaN marks an unusable normal
+  std::vector<glm::vec2> uvs;      // empty: the file has none
+};
+
+WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitive& primitive, const std::string& where,
+                                const glm::dmat4& world) {
+  WorldVertices v;
+  const int positionAccessor = attributeAccessor(primitive, "POSITION");
+  if (positionAccessor < 0) ctx.fail(where + " has no POSITION attribute");
+  const AccessorReader positions(ctx, positionAccessor, "POSITION of " + where);
+  if (positions.type() != TINYGLTF_TYPE_VEC3 || positions.componentType() != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+    ctx.fail("POSITION of " + where + " must be a FLOAT VEC3 accessor");
+  }
+  const size_t count = positions.count();
+  v.positions.resize(count);
+  for (size_t i = 0; i < count; ++i) {
+    // Transform in double so large translations do not cost precision before the final rounding.
+    const glm::dvec4 p = world * glm::dvec4(glm::dvec3(positions.vec3(i)), 1.0);
+    v.positions[i] = glm::vec3(p.x, p.y, p.z);
+  }
+
+  const int normalAccessor = attributeAccessor(primitive, "NORMAL");
+  if (normalAccessor >= 0) {
+    const AccessorReader normals(ctx, normalAccessor, "NORMAL of " + where);
+    if (normals.type() != TINYGLTF_TYPE_VEC3 || normals.componentType() != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+      ctx.fail("NORMAL of " + where + " must be a FLOAT VEC3 accessor");
+    }
+    if (normals.count() != count) ctx.fail("NORMAL of " + where + " has a different count than POSITION");
+    // Normals are covectors: they transform by the inverse transpose to stay perpendicular to
+    // surfaces under non-uniform scale.
+    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(world)));
+    const float nan = std::nanf("");
+    v.normals.resize(count);
+    for (size_t i = 0; i < count; ++i) {
+      const glm::dvec3 n = normalMatrix * glm::dvec3(normals.vec3(i));
+      const double length = glm::length(n);
+      v.normals[i] = (length > 0.0 && std::isfinite(length)) ? glm::vec3(n / length) : glm::vec3(nan);
+    }
+  }
+
+  const int uvAccessor = attributeAccessor(primitive, "TEXCOORD_0");
+  if (uvAccessor >= 0) {
+    const AccessorReader uvs(ctx, uvAccessor, "TEXCOORD_0 of " + where);
+    const int type = uvs.componentType();
+    const bool validFormat = uvs.type() == TINYGLTF_TYPE_VEC2 &&
+                             (type == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                              (uvs.normalized() && (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                                    type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+    if (!validFormat) {
+      ctx.warning("TEXCOORD_0 of " + where +
+                  " is neither FLOAT nor normalized UNSIGNED_BYTE/SHORT VEC2; texture coordinates ignored");
+    } else {
+      if (uvs.count() != count) ctx.fail("TEXCOORD_0 of " + where + " has a different count than POSITION");
+      v.uvs.resize(count);
+      for (size_t i = 0; i < count; ++i) {
+        const glm::vec2 uv = uvs.vec2(i);
+        v.uvs[i] = (std::isfinite(uv.x) && std::isfinite(uv.y)) ? uv : glm::vec2(0.0f);
+      }
+    }
+  }
+  return v;
+}
+
+// Vertex indices of the primitive: its index accessor, or 0..n-1 when it has none.
+std::vector<uint32_t> readIndices(const LoadContext& ctx, const tinygltf::Primitive& primitive,
+                                  const std::string& where, size_t vertexCount) {
+  std::vector<uint32_t> indices;
+  if (primitive.indices < 0) {
+    if (vertexCount > 0xffffffffull) ctx.fail(where + " has more than 2^32 vertices");
+    indices.resize(vertexCount);
+    for (size_t i = 0; i < vertexCount; ++i) indices[i] = uint32_t(i);
+    return indices;
+  }
+  const AccessorReader reader(ctx, primitive.indices, "indices of " + where);
+  const int type = reader.componentType();
+  if (reader.type() != TINYGLTF_TYPE_SCALAR ||
+      (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+       type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
+    ctx.fail("indices of " + where + " must be an UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT SCALAR accessor");
+  }
+  indices.resize(reader.count());
+  for (size_t i = 0; i < indices.size(); ++i) {
+    indices[i] = reader.unsignedValue(i);
+    if (indices[i] >= vertexCount) {
+      ctx.fail("index " + std::to_string(indices[i]) + " (element " + std::to_string(i) + " of " + where +
+               ") is out of range of its " + std::to_string(vertexCount) + " vertices");
+    }
+  }
+  return indices;
+}
+
+}  // namespace
+
+size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex, const glm::dmat4& world,
+                       uint32_t material, uint32_t primitiveId, std::vector<Triangle>& out, GeometryStats& stats) {
+  const tinygltf::Primitive& primitive = ctx.model.meshes[size_t(meshIndex)].primitives[size_t(primitiveIndex)];
+  const std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex);
+  const WorldVertices v = transformVertices(ctx, primitive, where, world);
+  const std::vector<uint32_t> indices = readIndices(ctx, primitive, where, v.positions.size());
+  stats.leftoverIndices += indices.size() % 3;
+
+  // A mirroring transform turns counter-clockwise into clockwise; swapping two vertices keeps the
+  // glTF front face (CCW) and hence the geometric normal on the side the file meant.
+  const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
+  const size_t before = out.size();
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    uint32_t corner[3] = {indices[t], indices[t + 1], indices[t + 2]};
+    if (mirrored) std::swap(corner[1], corner[2]);
+    Triangle tri;
+    for (int k = 0; k < 3; ++k) tri.p[k] = v.positions[corner[k]];
+    if (!isFinite(tri.p[0]) || !isFinite(tri.p[1]) || !isFinite(tri.p[2])) {
+      ++stats.degenerate;
+      continue;
+    }
+    const glm::dvec3 p0(tri.p[0]);
+    const glm::dvec3 cross = glm::cross(glm::dvec3(tri.p[1]) - p0, glm::dvec3(tri.p[2]) - p0);
+    const double twiceArea = glm::length(cross);
+    if (!(twiceArea > 0.0) || !std::isfinite(twiceArea)) {
+      ++stats.degenerate;
+      continue;
+    }
+    const glm::vec3 geometric(cross / twiceArea);
+    for (int k = 0; k < 3; ++k) {
+      if (v.normals.empty()) {
+        tri.n[k] = geometric;  // spec: flat normals when the file has none
+      } else if (isFinite(v.normals[corner[k]])) {
+        tri.n[k] = v.normals[corner[k]];
+      } else {
+        tri.n[k] = geometric;
+        ++stats.invalidNormals;
+      }
+      tri.uv[k] = v.uvs.empty() ? glm::vec2(0.0f) : v.uvs[corner[k]];
+    }
+    tri.material = material;
+    tri.primitive = primitiveId;
+    out.push_back(tri);
+  }
+  return out.size() - before;
+}
+
+}  // namespace gltf
+}  // namespace mixtrace

@@ -1,0 +1,120 @@
+#pragma once
+// Pieces of the glTF loader shared between its source files (not a public interface).
+//
+// Debian ships tinygltf as a shared library (libtinygltf.so, which also carries stb_image and the
+// JSON parser), so the header is included WITHOUT TINYGLTF_IMPLEMENTATION: we only need the
+// declarations of Model, TinyGLTF and tinygltf::LoadImageData.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <tiny_gltf.h>
+
+#include "scene/scene.h"
+
+namespace mixtrace {
+namespace gltf {
+
+// What every stage needs: the parsed model and the file name for messages.
+struct LoadContext {
+  std::string path;
+  tinygltf::Model model;
+
+  // Throws mixtrace::Error("<path>: <message>").
+  [[noreturn]] void fail(const std::string& message) const;
+  // mixtrace::warn("<path>: <message>").
+  void warning(const std::string& message) const;
+};
+
+// --- gltf_parse.cpp: file -> tinygltf::Model, with the container checks tinygltf skips.
+// Throws for a missing, malformed or truncated file and for unsupported required extensions.
+// Images are NOT decoded here: their encoded bytes are kept (Image::as_is) and decoded on demand
+// by decodeImage once the data they live in has been validated.
+void parseGltfFile(LoadContext& ctx);
+// Joins the non-empty lines of a (tinygltf) message with "; " so errors stay one line.
+std::string condenseMessage(const std::string& text);
+
+// --- gltf_accessors.cpp: bounds-checked reading of accessor data.
+int componentSizeOf(int componentType);   // 0 for an unknown type
+int componentCountOf(int accessorType);   // 0 for an unknown type
+
+// A validated accessor: constructing it checks that every element lies inside its bufferView and
+// buffer, so the reads below never leave the data.
+class AccessorReader {
+ public:
+  // `role` names the accessor in messages ("POSITION of mesh 2 primitive 0").
+  AccessorReader(const LoadContext& ctx, int accessorIndex, const std::string& role);
+
+  size_t count() const { return count_; }
+  int componentType() const { return componentType_; }
+  int type() const { return type_; }
+  bool normalized() const { return normalized_; }
+  int index() const { return index_; }
+
+  // Component c of element i as float; normalised integers map to [0,1] / [-1,1] per the spec.
+  float component(size_t i, int c) const;
+  // Component 0 of element i as an unsigned integer (index buffers).
+  uint32_t unsignedValue(size_t i) const;
+  glm::vec2 vec2(size_t i) const { return {component(i, 0), component(i, 1)}; }
+  glm::vec3 vec3(size_t i) const { return {component(i, 0), component(i, 1), component(i, 2)}; }
+
+ private:
+  const unsigned char* element(size_t i) const { return data_ + i * stride_; }
+
+  const unsigned char* data_ = nullptr;  // null: the accessor has no bufferView, all zeros
+  size_t stride_ = 0;
+  size_t count_ = 0;
+  int componentType_ = 0;
+  int componentSize_ = 0;
+  int type_ = 0;
+  bool normalized_ = false;
+  int index_ = -1;
+};
+
+// Returns the bytes of bufferView `viewIndex` after checking it lies inside its buffer.
+const unsigned char* bufferViewBytes(const LoadContext& ctx, int viewIndex, size_t& byteLength,
+                                     const std::string& role);
+
+// --- gltf_geometry.cpp: one mesh primitive instance -> world-space triangles.
+struct GeometryStats {
+  size_t degenerate = 0;      // dropped: zero area or non-finite positions
+  size_t invalidNormals = 0;  // file normals that were zero or non-finite, replaced
+  size_t leftoverIndices = 0; // index/vertex counts not a multiple of 3
+};
+
+// Appends the triangles of primitive `primitiveIndex` of mesh `meshIndex`, placed by `world`,
+// to `out`; returns how many were appended. Winding is reversed under mirroring transforms so the
+// front face stays counter-clockwise.
+size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex, const glm::dmat4& world,
+                       uint32_t material, uint32_t primitiveId, std::vector<Triangle>& out,
+                       GeometryStats& stats);
+
+// --- gltf_materials.cpp: glTF materials and textures -> MaterialGpu and Texture, on demand.
+class MaterialTable {
+ public:
+  MaterialTable(const LoadContext& ctx, Scene& scene);
+  // Index into scene.materials for glTF material `gltfMaterial` (-1: the spec's default
+  // material); converts it (and its textures) the first time it is asked for.
+  uint32_t materialFor(int gltfMaterial);
+
+ private:
+  int textureFor(const tinygltf::TextureInfo& info, int materialIndex, const char* slot);
+  // False (after a warning) when the texture has no image this loader can read.
+  bool convertTexture(int textureIndex, Texture& out);
+
+  const LoadContext& ctx_;
+  Scene& scene_;
+  std::vector<int> materialSlots_;  // glTF material -> scene material, -1 until converted
+  int defaultMaterial_ = -1;
+  std::vector<int> textureSlots_;   // glTF texture -> scene texture; -1 not yet, -2 unusable
+};
+
+// --- gltf_textures.cpp
+// Decodes image `imageIndex` (PNG/JPEG/... through tinygltf's stb_image) into texture's size and
+// RGBA8 texels, and computes its averageLinear.
+void decodeImage(const LoadContext& ctx, int imageIndex, Texture& texture);
+
+}  // namespace gltf
+}  // namespace mixtrace

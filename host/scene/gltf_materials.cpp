@@ -1,0 +1,123 @@
+// glTF materials -> MaterialGpu, converted on first use so unused materials cost nothing.
+#include <algorithm>
+#include <cmath>
+
+#include "scene/gltf_internal.h"
+
+namespace mixtrace {
+namespace gltf {
+namespace {
+
+// A factor from the file: non-finite values fall back to the spec default, the rest is clamped to
+// the spec's [0, 1]. Sets `changed` when the file's value was not usable as is.
+float unitFactor(double value, float fallback, bool& changed) {
+  if (!std::isfinite(value)) {
+    changed = true;
+    return fallback;
+  }
+  const double clamped = std::min(std::max(value, 0.0), 1.0);
+  if (clamped != value) changed = true;
+  return float(clamped);
+}
+
+float emissiveStrength(const LoadContext& ctx, const tinygltf::Material& material, int materialIndex) {
+  const auto it = material.extensions.find("KHR_materials_emissive_strength");
+  if (it == material.extensions.end() || !it->second.IsObject()) return 1.0f;
+  const tinygltf::Value& strength = it->second.Get("emissiveStrength");
+  if (!strength.IsNumber()) return 1.0f;  // spec default
+  const double value = strength.GetNumberAsDouble();
+  if (!std::isfinite(value) || value < 0.0) {
+    ctx.warning("material " + std::to_string(materialIndex) + " has an invalid emissiveStrength; using 1");
+    return 1.0f;
+  }
+  return float(value);
+}
+
+MaterialGpu defaultMaterial() {
+  // glTF 2.0 spec, "Default Material": white, fully metallic, fully rough, no emission.
+  MaterialGpu m{};
+  m.baseColor = glm::vec3(1.0f);
+  m.metallic = 1.0f;
+  m.roughness = 1.0f;
+  m.emission = glm::vec3(0.0f);
+  m.baseColorTexture = -1;
+  m.metallicRoughnessTexture = -1;
+  m.emissiveTexture = -1;
+  m.flags = 0;
+  return m;
+}
+
+}  // namespace
+
+MaterialTable::MaterialTable(const LoadContext& ctx, Scene& scene)
+    : ctx_(ctx),
+      scene_(scene),
+      materialSlots_(ctx.model.materials.size(), -1),
+      textureSlots_(ctx.model.textures.size(), -1) {}
+
+uint32_t MaterialTable::materialFor(int gltfMaterial) {
+  if (gltfMaterial < 0) {
+    if (defaultMaterial_ < 0) {
+      defaultMaterial_ = int(scene_.materials.size());
+      scene_.materials.push_back(defaultMaterial());
+    }
+    return uint32_t(defaultMaterial_);
+  }
+  if (size_t(gltfMaterial) >= materialSlots_.size()) {
+    ctx_.fail("material " + std::to_string(gltfMaterial) + " is referenced but does not exist");
+  }
+  if (materialSlots_[size_t(gltfMaterial)] >= 0) return uint32_t(materialSlots_[size_t(gltfMaterial)]);
+
+  const tinygltf::Material& src = ctx_.model.materials[size_t(gltfMaterial)];
+  const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
+  MaterialGpu m = defaultMaterial();
+  bool changed = false;
+  if (pbr.baseColorFactor.size() >= 3) {  // alpha (the 4th) is ignored: no transparency
+    m.baseColor = glm::vec3(unitFactor(pbr.baseColorFactor[0], 1.0f, changed),
+                            unitFactor(pbr.baseColorFactor[1], 1.0f, changed),
+                            unitFactor(pbr.baseColorFactor[2], 1.0f, changed));
+  }
+  m.metallic = unitFactor(pbr.metallicFactor, 1.0f, changed);
+  m.roughness = unitFactor(pbr.roughnessFactor, 1.0f, changed);
+  if (src.emissiveFactor.size() == 3) {
+    m.emission = glm::vec3(unitFactor(src.emissiveFactor[0], 0.0f, changed),
+                           unitFactor(src.emissiveFactor[1], 0.0f, changed),
+                           unitFactor(src.emissiveFactor[2], 0.0f, changed));
+  }
+  if (changed) ctx_.warning("material " + std::to_string(gltfMaterial) + " has factors outside [0, 1]; clamped");
+  m.emission *= emissiveStrength(ctx_, src, gltfMaterial);
+  m.baseColorTexture = textureFor(pbr.baseColorTexture, gltfMaterial, "baseColorTexture");
+  m.metallicRoughnessTexture = textureFor(pbr.metallicRoughnessTexture, gltfMaterial, "metallicRoughnessTexture");
+  m.emissiveTexture = textureFor(src.emissiveTexture, gltfMaterial, "emissiveTexture");
+  m.flags = src.doubleSided ? shared::kMaterialDoubleSided : 0u;
+
+  materialSlots_[size_t(gltfMaterial)] = int(scene_.materials.size());
+  scene_.materials.push_back(m);
+  return uint32_t(materialSlots_[size_t(gltfMaterial)]);
+}
+
+int MaterialTable::textureFor(const tinygltf::TextureInfo& info, int materialIndex, const char* slot) {
+  if (info.index < 0) return -1;
+  const std::string where = "material " + std::to_string(materialIndex) + " " + slot;
+  if (size_t(info.index) >= textureSlots_.size()) {
+    ctx_.fail(where + " refers to texture " + std::to_string(info.index) + ", which does not exist");
+  }
+  if (info.texCoord != 0) {
+    ctx_.warning(where + " uses TEXCOORD_" + std::to_string(info.texCoord) +
+                 "; only TEXCOORD_0 is supported, using it");
+  }
+  int& slotIndex = textureSlots_[size_t(info.index)];
+  if (slotIndex == -1) {
+    Texture texture;
+    if (convertTexture(info.index, texture)) {
+      slotIndex = int(scene_.textures.size());
+      scene_.textures.push_back(std::move(texture));
+    } else {
+      slotIndex = -2;  // unusable; already reported
+    }
+  }
+  return slotIndex >= 0 ? slotIndex : -1;
+}
+
+}  // namespace gltf
+}  // namespace mixtrace
