@@ -139,6 +139,8 @@ void WavefrontRenderer::renderSamples(uint32_t count) {
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     vkBeginCommandBuffer(cmd_, &bi);
     timer_.begin(cmd_);
+    VkDescriptorSet set = set_.set();
+    vkCmdBindDescriptorSets(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, set_.pipelineLayout(), 0, 1, &set, 0, nullptr);
     for (uint32_t s = 0; s < n; ++s)
       for (uint32_t offset = 0; offset < pixelCount_; offset += pathCount_)
         recordSample(cmd_, spp_ + s, offset, std::min(pathCount_, pixelCount_ - offset));

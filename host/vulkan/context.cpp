@@ -21,8 +21,8 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFl
                                                    const VkDebugUtilsMessengerCallbackDataEXT* data,
                                                    void*) {
   if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
-    gValidationErrors++;
-    std::fprintf(stderr, "mixtrace: validation error: %s\n", data->pMessage);
+    // The first few in full; a broken recording repeats the same error thousands of times.
+    if (gValidationErrors++ < 5) std::fprintf(stderr, "mixtrace: validation error: %s\n", data->pMessage);
   } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
     std::fprintf(stderr, "mixtrace: validation warning: %s\n", data->pMessage);
   }

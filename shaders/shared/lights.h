@@ -114,7 +114,7 @@ SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter
     uint e = selectEmitter(l, uEmitter);
     EmitterGpu em = EMITTER(e);
     TriangleGeom g = TRIANGLE(em.triangle);
-    vec3 bary = sampleUniformTriangle(uPoint);   // weights of v0, v1, v2
+    vec3 bary = sampleTriangleBarycentrics(uPoint);   // weights of v0, v1, v2
     s.position = g.v0 + bary.y * g.e1 + bary.z * g.e2;
     s.triangle = em.triangle;
     vec3 d = s.position - p;

@@ -1,4 +1,5 @@
 #version 460
+#extension GL_GOOGLE_include_directive : require
 // Test kernel: the wavefront's BVH traversal on a batch of rays given by the host, so tests can
 // compare the GPU's closest and any hits with brute force. Mode 0: closest hit into hits[];
 // mode 1: any hit in (0, misPdf[i]) into misPdf[i] (1 blocked, 0 free).

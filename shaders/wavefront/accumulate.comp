@@ -1,4 +1,5 @@
 #version 460
+#extension GL_GOOGLE_include_directive : require
 // Stage 5: adds each path's radiance to its pixel (sum and sum of squares, for the variance of
 // the mean). A NaN or Inf sample is counted and dropped: it never reaches the image.
 #include "gpu/buffers.glsl"

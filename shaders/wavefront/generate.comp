@@ -1,4 +1,5 @@
 #version 460
+#extension GL_GOOGLE_include_directive : require
 // Stage 1: one camera ray per path of the chunk; resets the path state and fills the first queue.
 #include "gpu/buffers.glsl"
 #include "shared/camera.h"

@@ -1,4 +1,5 @@
 #version 460
+#extension GL_GOOGLE_include_directive : require
 // Stage 2: closest hit of every queued extension ray against the BVH.
 #include "gpu/buffers.glsl"
 #include "shared/bvh_traverse.h"

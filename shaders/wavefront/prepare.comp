@@ -1,4 +1,5 @@
 #version 460
+#extension GL_GOOGLE_include_directive : require
 // A single invocation between stages: turns a queue's counter into indirect dispatch arguments
 // (so the host never reads a count back) and resets the counters the next stage appends to.
 #include "gpu/buffers.glsl"

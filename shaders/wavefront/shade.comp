@@ -1,4 +1,5 @@
 #version 460
+#extension GL_GOOGLE_include_directive : require
 // Stage 3: at every queued path's hit: emission (MIS-weighted against light sampling), one light
 // sample (queued as a shadow ray with its contribution) and one BSDF sample (the next extension
 // ray). Balance heuristic over the two techniques: p_eff = p_light + p_bsdf.
@@ -38,7 +39,7 @@ void main() {
 
   uint rng = rngState[path];
   BsdfParams bsdf = surfaceBsdf(sh);
-  Frame frame = makeFrame(sh.shadingNormal);
+  OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
   vec3 wo = toLocal(frame, -dir);
   vec3 origin = offsetRayOrigin(sh.position, sh.geometricNormal);
 

@@ -1,4 +1,5 @@
 #version 460
+#extension GL_GOOGLE_include_directive : require
 // Stage 4: any-hit test of every queued shadow ray; an unoccluded one adds its contribution.
 // Each path queues at most one shadow ray per depth, so the add needs no atomics.
 #include "gpu/buffers.glsl"
