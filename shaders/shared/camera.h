@@ -7,8 +7,8 @@
 SHARED_BEGIN
 
 SHARED_FN vec3 cameraRayDirection(CameraGpu c, uint x, uint y, vec2 jitter) {
-  float sx = (2.0 * (float(x) + jitter.x) / float(c.width) - 1.0) * c.tanHalfFovY * c.aspect;
-  float sy = (1.0 - 2.0 * (float(y) + jitter.y) / float(c.height)) * c.tanHalfFovY;
+  float sx = (2.0f * (float(x) + jitter.x) / float(c.width) - 1.0f) * c.tanHalfFovY * c.aspect;
+  float sy = (1.0f - 2.0f * (float(y) + jitter.y) / float(c.height)) * c.tanHalfFovY;
   return normalize(c.forward + sx * c.right + sy * c.up);
 }
 

@@ -4,14 +4,14 @@
 #include "shared/dialect.h"
 SHARED_BEGIN
 
-const float kPi = 3.14159265358979323846;
-const float kInvPi = 0.31830988618379067154;
-const float kTwoPi = 6.28318530717958647692;
-const float kFloatMax = 3.402823466e+38;
+const float kPi = 3.14159265358979323846f;
+const float kInvPi = 0.31830988618379067154f;
+const float kTwoPi = 6.28318530717958647692f;
+const float kFloatMax = 3.402823466e+38f;
 
 // GGX alpha is clamped from below: alpha = 0 is a delta distribution the estimators here do not
 // treat specially, and near-mirror (alpha 0.002) already spans the dynamic range of float pdfs.
-const float kMinAlpha = 0.002;
+const float kMinAlpha = 0.002f;
 
 SHARED_END
 #endif

@@ -5,6 +5,7 @@
 // Rules for shared code:
 //   - wrap the contents in SHARED_BEGIN / SHARED_END; mark functions SHARED_FN;
 //   - use INOUT(T) / OUT(T) for reference parameters;
+//   - float literals carry the f suffix (C++ would otherwise compute in double);
 //   - only .x .y .z .w component access (no swizzles), no struct constructors (assign fields),
 //     no GLSL-only built-ins (atomics, barriers, textures);
 //   - buffers are reached through macros the includer defines (see lights.h).

@@ -39,7 +39,7 @@ SHARED_FN uint selectLight(float u, uint lightCount) {
 }
 
 SHARED_FN float lightSelectPmf(uint light) {
-  if (SINGLE_LIGHT) return 1.0;
+  if (SINGLE_LIGHT) return 1.0f;
   return LIGHT(light).selectPmf;
 }
 
@@ -54,7 +54,7 @@ SHARED_FN uint selectEmitter(LightGpu l, float u) {
 }
 
 SHARED_FN vec3 triangleGeometricNormal(TriangleGeom g) { return normalize(cross(g.e1, g.e2)); }
-SHARED_FN float triangleArea(TriangleGeom g) { return 0.5 * length(cross(g.e1, g.e2)); }
+SHARED_FN float triangleArea(TriangleGeom g) { return 0.5f * length(cross(g.e1, g.e2)); }
 
 // Radiance leaving triangle `tri` at barycentrics (u, v) towards `towardsViewer` (any length).
 // One-sided (front face = counter-clockwise) unless the material is double-sided.
@@ -62,11 +62,11 @@ SHARED_FN vec3 emittedRadiance(uint tri, float u, float v, vec3 towardsViewer) {
   TriangleShading s = TRIANGLE_SHADING(tri);
   MaterialGpu m = MATERIAL(s.material);
   TriangleGeom g = TRIANGLE(tri);
-  bool front = dot(cross(g.e1, g.e2), towardsViewer) > 0.0;
-  if (!front && (m.flags & kMaterialDoubleSided) == 0u) return vec3(0.0);
+  bool front = dot(cross(g.e1, g.e2), towardsViewer) > 0.0f;
+  if (!front && (m.flags & kMaterialDoubleSided) == 0u) return vec3(0.0f);
   vec3 le = m.emission;
   if (HAS_TEXTURES && m.emissiveTexture >= 0) {
-    vec2 uv = (1.0 - u - v) * s.uv0 + u * s.uv1 + v * s.uv2;
+    vec2 uv = (1.0f - u - v) * s.uv0 + u * s.uv1 + v * s.uv2;
     vec4 t = sampleTexture(m.emissiveTexture, uv, true);
     le = le * vec3(t.x, t.y, t.z);
   }
@@ -77,21 +77,21 @@ SHARED_FN vec3 emittedRadiance(uint tri, float u, float v, vec3 towardsViewer) {
 // `tri` as seen from `from`: selection * triangle pmf / area, converted by d^2 / |cos|.
 SHARED_FN float areaLightPdf(uint tri, vec3 from, vec3 lightPoint) {
   int e = TRIANGLE_SHADING(tri).emitter;
-  if (e < 0) return 0.0;
+  if (e < 0) return 0.0f;
   EmitterGpu em = EMITTER(uint(e));
   TriangleGeom g = TRIANGLE(tri);
   vec3 d = lightPoint - from;
   float dist2 = dot(d, d);
   vec3 n = cross(g.e1, g.e2);   // length = 2 * area
   float cosTimesTwoArea = abs(dot(n, d)) * inversesqrt(dist2);
-  if (!(cosTimesTwoArea > 0.0)) return 0.0;
-  return lightSelectPmf(em.light) * em.pmf * 2.0 * dist2 / cosTimesTwoArea;
+  if (!(cosTimesTwoArea > 0.0f)) return 0.0f;
+  return lightSelectPmf(em.light) * em.pmf * 2.0f * dist2 / cosTimesTwoArea;
 }
 
 // glTF's recommended spot falloff: smooth between the outer and inner cone, squared.
 SHARED_FN float spotFalloff(LightGpu l, vec3 lightToPoint) {
   float c = dot(l.direction, lightToPoint);
-  float a = clamp(c * l.spotScale + l.spotOffset, 0.0, 1.0);
+  float a = clamp(c * l.spotScale + l.spotOffset, 0.0f, 1.0f);
   return a * a;
 }
 
@@ -104,11 +104,11 @@ SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter
   float selectPmf = lightSelectPmf(s.light);
   s.triangle = kNoHit;
   s.isDelta = l.kind != kLightArea;
-  s.normal = vec3(0.0);
-  s.radiance = vec3(0.0);
-  s.pdf = 0.0;
-  s.distance = 0.0;
-  s.direction = vec3(0.0, 0.0, 1.0);
+  s.normal = vec3(0.0f);
+  s.radiance = vec3(0.0f);
+  s.pdf = 0.0f;
+  s.distance = 0.0f;
+  s.direction = vec3(0.0f, 0.0f, 1.0f);
   s.position = p;
   if (HAS_AREA_LIGHTS && l.kind == kLightArea) {
     uint e = selectEmitter(l, uEmitter);
@@ -119,18 +119,18 @@ SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter
     s.triangle = em.triangle;
     vec3 d = s.position - p;
     float dist2 = dot(d, d);
-    if (!(dist2 > 0.0)) return false;
+    if (!(dist2 > 0.0f)) return false;
     s.distance = sqrt(dist2);
     s.direction = d / s.distance;
     vec3 n = cross(g.e1, g.e2);
     float twoArea = length(n);
-    if (!(twoArea > 0.0)) return false;
+    if (!(twoArea > 0.0f)) return false;
     s.normal = n / twoArea;
     float cosLight = abs(dot(s.normal, s.direction));
-    if (!(cosLight > 0.0)) return false;
-    s.pdf = selectPmf * em.pmf * 2.0 * dist2 / (twoArea * cosLight);
+    if (!(cosLight > 0.0f)) return false;
+    s.pdf = selectPmf * em.pmf * 2.0f * dist2 / (twoArea * cosLight);
     s.radiance = emittedRadiance(em.triangle, bary.y, bary.z, -d);
-    return s.radiance.x > 0.0 || s.radiance.y > 0.0 || s.radiance.z > 0.0;
+    return s.radiance.x > 0.0f || s.radiance.y > 0.0f || s.radiance.z > 0.0f;
   }
   if (HAS_PUNCTUAL_LIGHTS) {
     s.pdf = selectPmf;
@@ -142,13 +142,13 @@ SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter
     }
     vec3 d = l.position - p;
     float dist2 = dot(d, d);
-    if (!(dist2 > 0.0)) return false;
+    if (!(dist2 > 0.0f)) return false;
     s.position = l.position;
     s.distance = sqrt(dist2);
     s.direction = d / s.distance;
     s.radiance = l.intensity / dist2;
     if (l.kind == kLightSpot) s.radiance = s.radiance * spotFalloff(l, -s.direction);
-    return s.radiance.x > 0.0 || s.radiance.y > 0.0 || s.radiance.z > 0.0;
+    return s.radiance.x > 0.0f || s.radiance.y > 0.0f || s.radiance.z > 0.0f;
   }
   return false;
 }

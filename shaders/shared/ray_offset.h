@@ -7,11 +7,11 @@
 SHARED_BEGIN
 
 SHARED_FN float offsetComponent(float p, float n) {
-  const float kOrigin = 1.0 / 32.0;
-  const float kFloatScale = 1.0 / 65536.0;
-  const float kIntScale = 256.0;
+  const float kOrigin = 1.0f / 32.0f;
+  const float kFloatScale = 1.0f / 65536.0f;
+  const float kIntScale = 256.0f;
   int offsetInt = int(kIntScale * n);
-  float pInt = intBitsToFloat(floatBitsToInt(p) + (p < 0.0 ? -offsetInt : offsetInt));
+  float pInt = intBitsToFloat(floatBitsToInt(p) + (p < 0.0f ? -offsetInt : offsetInt));
   return abs(p) < kOrigin ? p + kFloatScale * n : pInt;
 }
 

@@ -23,7 +23,7 @@ SHARED_FN uint rngNextUint(INOUT(uint) state) {
 
 // Uniform in [0, 1): 24 random bits, so the result is exactly representable and never 1.
 SHARED_FN float rngNextFloat(INOUT(uint) state) {
-  return float(rngNextUint(state) >> 8u) * (1.0 / 16777216.0);
+  return float(rngNextUint(state) >> 8u) * (1.0f / 16777216.0f);
 }
 
 SHARED_END

@@ -23,16 +23,16 @@ SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDir
   SurfaceHit h;
   h.position = g.v0 + u * g.e1 + v * g.e2;
   vec3 ng = normalize(cross(g.e1, g.e2));
-  bool front = dot(ng, incomingDirection) < 0.0;
+  bool front = dot(ng, incomingDirection) < 0.0f;
   h.geometricNormal = front ? ng : -ng;
-  vec3 ns = (1.0 - u - v) * s.n0 + u * s.n1 + v * s.n2;
+  vec3 ns = (1.0f - u - v) * s.n0 + u * s.n1 + v * s.n2;
   float len = length(ns);
-  ns = len > 0.0 ? ns / len : ng;
+  ns = len > 0.0f ? ns / len : ng;
   ns = front ? ns : -ns;
   // A shading normal that disagrees with the geometry (bad file normals) is not trusted.
-  if (!(dot(ns, h.geometricNormal) > 0.0)) ns = h.geometricNormal;
+  if (!(dot(ns, h.geometricNormal) > 0.0f)) ns = h.geometricNormal;
   h.shadingNormal = ns;
-  h.uv = (1.0 - u - v) * s.uv0 + u * s.uv1 + v * s.uv2;
+  h.uv = (1.0f - u - v) * s.uv0 + u * s.uv1 + v * s.uv2;
   h.material = s.material;
   return h;
 }
@@ -40,7 +40,7 @@ SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDir
 SHARED_FN BsdfParams surfaceBsdf(SurfaceHit h) {
   MaterialGpu m = MATERIAL(h.material);
   vec3 baseColor = m.baseColor;
-  float metallic = HAS_METALS ? m.metallic : 0.0;
+  float metallic = HAS_METALS ? m.metallic : 0.0f;
   float roughness = m.roughness;
   if (HAS_TEXTURES) {
     if (m.baseColorTexture >= 0) {
@@ -50,7 +50,7 @@ SHARED_FN BsdfParams surfaceBsdf(SurfaceHit h) {
     if (m.metallicRoughnessTexture >= 0) {
       vec4 t = sampleTexture(m.metallicRoughnessTexture, h.uv, false);
       roughness = roughness * t.y;
-      metallic = HAS_METALS ? metallic * t.z : 0.0;
+      metallic = HAS_METALS ? metallic * t.z : 0.0f;
     }
   }
   return makeBsdfParams(baseColor, metallic, roughness);

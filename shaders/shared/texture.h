@@ -24,7 +24,7 @@ SHARED_FN vec4 fetchTexel(TextureGpu t, int x, int y, bool srgb) {
   uint y0 = uint(wrapTexelCoord(y, int(t.height), (t.wrap >> 2u) & 3u));
   uint texel = TEXEL(t.offset + y0 * t.width + x0);
   vec4 c = vec4(float(texel & 255u), float((texel >> 8u) & 255u), float((texel >> 16u) & 255u),
-                float(texel >> 24u)) * (1.0 / 255.0);
+                float(texel >> 24u)) * (1.0f / 255.0f);
   if (srgb) {
     c.x = srgbToLinear(c.x);
     c.y = srgbToLinear(c.y);
@@ -36,8 +36,8 @@ SHARED_FN vec4 fetchTexel(TextureGpu t, int x, int y, bool srgb) {
 SHARED_FN vec4 sampleTexture(int index, vec2 uv, bool srgb) {
   TextureGpu t = TEXTURE(index);
   // Texel centres sit at half-integer coordinates; floor() keeps negative UVs continuous.
-  float x = uv.x * float(t.width) - 0.5;
-  float y = uv.y * float(t.height) - 0.5;
+  float x = uv.x * float(t.width) - 0.5f;
+  float y = uv.y * float(t.height) - 0.5f;
   float fx0 = floor(x);
   float fy0 = floor(y);
   float fx = x - fx0;

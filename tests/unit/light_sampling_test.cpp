@@ -1,0 +1,143 @@
+// Light sampling as the shade stage runs it (shaders/shared/lights.h, compiled as C++): the pdf
+// sampleLight() returns equals the pdf areaLightPdf() evaluates for the same point (the MIS
+// weight of a BSDF sample that hits the light uses the latter); selection frequencies follow the
+// selection pmf (chi-square); and light-sampling estimates of the irradiance from a quad light
+// match the analytic polygon formula.
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "scene/gltf_loader.h"
+#include "scene/shared_scene_access.h"
+
+using namespace mixtrace;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<std::string> shippedScenes() {
+  std::vector<std::string> v;
+  for (auto& e : fs::directory_iterator(fs::path(MIXTRACE_SOURCE_DIR) / "scenes"))
+    if (e.path().extension() == ".gltf" || e.path().extension() == ".glb") v.push_back(e.path().string());
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+// Upper-tail probability of a chi-square variable with k degrees of freedom (Wilson-Hilferty:
+// accurate to a few percent in the tail, plenty for p-value thresholds of 1e-3).
+double chiSquareTail(double x, double k) {
+  double z = (std::cbrt(x / k) - (1.0 - 2.0 / (9.0 * k))) / std::sqrt(2.0 / (9.0 * k));
+  return 0.5 * std::erfc(z / std::sqrt(2.0));
+}
+
+}  // namespace
+
+class LightSamplingOnScene : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(LightSamplingOnScene, ReturnedPdfEqualsEvaluatedPdf) {
+  for (LightSelection selection : {LightSelection::Uniform, LightSelection::Power}) {
+    PreparedScene scene = prepareScene(loadGltf(GetParam()), selection);
+    gSharedScene = &scene;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const Bounds& b = scene.scene.bounds;
+    uint32_t lightCount = uint32_t(scene.lights.lights.size());
+    int areaSamples = 0;
+    for (int i = 0; i < 20000; ++i) {
+      glm::vec3 p = b.min + glm::vec3(u(rng), u(rng), u(rng)) * b.extent();
+      shared::LightSample s;
+      bool ok = shared::sampleLight(p, lightCount, u(rng), u(rng), glm::vec2(u(rng), u(rng)), s);
+      if (!ok) continue;
+      ASSERT_TRUE(std::isfinite(s.pdf) && s.pdf > 0.0f);
+      ASSERT_TRUE(std::isfinite(s.radiance.x) && std::isfinite(s.radiance.y) && std::isfinite(s.radiance.z));
+      if (s.isDelta) {
+        EXPECT_FLOAT_EQ(s.pdf, scene.lights.lights[s.light].selectPmf);
+        continue;
+      }
+      ++areaSamples;
+      float evaluated = shared::areaLightPdf(s.triangle, p, s.position);
+      ASSERT_NEAR(evaluated / s.pdf, 1.0f, 1e-3f) << "sample " << i;
+      EXPECT_EQ(scene.lights.emitters[scene.shading[s.triangle].emitter].light, s.light);
+    }
+    if (scene.lights.hasArea()) EXPECT_GT(areaSamples, 1000);
+  }
+}
+
+TEST_P(LightSamplingOnScene, SelectionFollowsPmf) {
+  PreparedScene scene = prepareScene(loadGltf(GetParam()), LightSelection::Power);
+  gSharedScene = &scene;
+  const auto& lights = scene.lights.lights;
+  double pmfSum = 0.0;
+  for (auto& l : lights) pmfSum += l.selectPmf;
+  EXPECT_NEAR(pmfSum, 1.0, 1e-5);
+  const int n = 200000;
+  std::vector<double> counts(lights.size(), 0.0);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < n; ++i) counts[shared::selectLight(u(rng), uint32_t(lights.size()))] += 1.0;
+  double chi2 = 0.0;
+  int dof = -1;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    double expected = n * double(lights[i].selectPmf);
+    if (expected < 5.0) continue;
+    chi2 += (counts[i] - expected) * (counts[i] - expected) / expected;
+    ++dof;
+  }
+  if (dof > 0) EXPECT_GT(chiSquareTail(chi2, dof), 1e-3) << "chi2 " << chi2 << " dof " << dof;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, LightSamplingOnScene, ::testing::ValuesIn(shippedScenes()),
+                         [](const auto& info) { return fs::path(info.param).stem().string(); });
+
+// Irradiance at a point from a unit-radiance quad: E = 1/2 * sum_edges angle_i * (n . unit(r_i x r_i+1))
+// (Lambert's polygon formula), against the light-sampling estimator mean(Le cos / pdf).
+TEST(LightSampling, QuadIrradianceMatchesPolygonFormula) {
+  Scene s;
+  s.name = "quad";
+  MaterialGpu m{};
+  m.emission = glm::vec3(1.0f);
+  m.baseColorTexture = m.metallicRoughnessTexture = m.emissiveTexture = -1;
+  s.materials.push_back(m);
+  // A 1 x 0.5 quad at height 1, facing down (counter-clockwise seen from below).
+  glm::vec3 q[4] = {{-0.5f, 1.0f, -0.25f}, {0.5f, 1.0f, -0.25f}, {0.5f, 1.0f, 0.25f}, {-0.5f, 1.0f, 0.25f}};
+  for (int t = 0; t < 2; ++t) {
+    Triangle tri{};
+    tri.p[0] = q[0];
+    tri.p[1] = q[1 + t];
+    tri.p[2] = q[2 + t];
+    glm::vec3 n = glm::normalize(glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]));
+    tri.n[0] = tri.n[1] = tri.n[2] = n;
+    s.triangles.push_back(tri);
+  }
+  ASSERT_LT(glm::normalize(glm::cross(q[1] - q[0], q[2] - q[0])).y, 0.0f) << "quad must face down";
+  for (auto& t : s.triangles) for (auto& p : t.p) s.bounds.grow(p);
+  PreparedScene scene = prepareScene(s, LightSelection::Power);
+  gSharedScene = &scene;
+
+  for (glm::vec3 p : {glm::vec3(0.0f), glm::vec3(0.7f, 0.2f, 0.1f), glm::vec3(-1.5f, 0.5f, 0.3f)}) {
+    glm::vec3 n(0.0f, 1.0f, 0.0f);
+    double analytic = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      glm::dvec3 a = glm::normalize(glm::dvec3(q[i] - p)), b = glm::normalize(glm::dvec3(q[(i + 1) % 4] - p));
+      glm::dvec3 c = glm::cross(a, b);
+      analytic += std::acos(glm::clamp(glm::dot(a, b), -1.0, 1.0)) * glm::dot(glm::dvec3(n), glm::normalize(c));
+    }
+    analytic = std::abs(0.5 * analytic);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const int samples = 200000;
+    double sum = 0.0, sumSq = 0.0;
+    for (int i = 0; i < samples; ++i) {
+      shared::LightSample ls;
+      double v = 0.0;
+      if (shared::sampleLight(p, 1, u(rng), u(rng), glm::vec2(u(rng), u(rng)), ls))
+        v = ls.radiance.x * std::max(0.0f, glm::dot(n, ls.direction)) / ls.pdf;
+      sum += v;
+      sumSq += v * v;
+    }
+    double mean = sum / samples, stderrMean = std::sqrt((sumSq / samples - mean * mean) / samples);
+    EXPECT_NEAR(mean, analytic, 4.0 * stderrMean + 1e-6) << "at (" << p.x << "," << p.y << "," << p.z << ")";
+  }
+}
