@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "chi2_support.h"
+#include "support/chi2.h"
 #include "shared/bsdf.h"
 
 namespace {

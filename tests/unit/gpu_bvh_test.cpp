@@ -12,6 +12,7 @@
 #include "bvh/bvh.h"
 #include "scene/gltf_loader.h"
 #include "shared/bindings.h"
+#include "support/shipped_scenes.h"
 #include "shared/layouts.h"
 #include "vulkan/buffer.h"
 #include "vulkan/context.h"
@@ -195,10 +196,8 @@ TEST(GpuBvh, RandomSoupMatchesBruteForce) {
 
 TEST(GpuBvh, ShippedScenesMatchBruteForce) {
   VulkanContext ctx(ContextOptions{});
-  for (auto& e : fs::directory_iterator(fs::path(MIXTRACE_SOURCE_DIR) / "scenes")) {
-    auto ext = e.path().extension();
-    if (ext != ".gltf" && ext != ".glb") continue;
-    Scene scene = loadGltf(e.path().string());
+  for (const std::string& path : mixtrace::testing::shippedScenes()) {
+    Scene scene = loadGltf(path);
     checkScene(ctx, scene.triangles, scene.bounds, 3000, scene.name.c_str());
   }
 }

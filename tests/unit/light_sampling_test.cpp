@@ -11,28 +11,12 @@
 
 #include "scene/gltf_loader.h"
 #include "scene/shared_scene_access.h"
+#include "support/chi2.h"
+#include "support/shipped_scenes.h"
 
 using namespace mixtrace;
+using mixtrace::testing::shippedScenes;
 namespace fs = std::filesystem;
-
-namespace {
-
-std::vector<std::string> shippedScenes() {
-  std::vector<std::string> v;
-  for (auto& e : fs::directory_iterator(fs::path(MIXTRACE_SOURCE_DIR) / "scenes"))
-    if (e.path().extension() == ".gltf" || e.path().extension() == ".glb") v.push_back(e.path().string());
-  std::sort(v.begin(), v.end());
-  return v;
-}
-
-// Upper-tail probability of a chi-square variable with k degrees of freedom (Wilson-Hilferty:
-// accurate to a few percent in the tail, plenty for p-value thresholds of 1e-3).
-double chiSquareTail(double x, double k) {
-  double z = (std::cbrt(x / k) - (1.0 - 2.0 / (9.0 * k))) / std::sqrt(2.0 / (9.0 * k));
-  return 0.5 * std::erfc(z / std::sqrt(2.0));
-}
-
-}  // namespace
 
 class LightSamplingOnScene : public ::testing::TestWithParam<std::string> {};
 
@@ -77,15 +61,11 @@ TEST_P(LightSamplingOnScene, SelectionFollowsPmf) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   for (int i = 0; i < n; ++i) counts[shared::selectLight(u(rng), uint32_t(lights.size()))] += 1.0;
-  double chi2 = 0.0;
-  int dof = -1;
-  for (size_t i = 0; i < lights.size(); ++i) {
-    double expected = n * double(lights[i].selectPmf);
-    if (expected < 5.0) continue;
-    chi2 += (counts[i] - expected) * (counts[i] - expected) / expected;
-    ++dof;
-  }
-  if (dof > 0) EXPECT_GT(chiSquareTail(chi2, dof), 1e-3) << "chi2 " << chi2 << " dof " << dof;
+  std::vector<double> expected(lights.size());
+  for (size_t i = 0; i < lights.size(); ++i) expected[i] = n * double(lights[i].selectPmf);
+  if (lights.size() < 2) return;
+  chi2::ChiSquareResult r = chi2::chiSquareTest(counts, expected);
+  EXPECT_GT(r.pValue, 1e-3) << "chi2 " << r.statistic << " dof " << r.dof;
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, LightSamplingOnScene, ::testing::ValuesIn(shippedScenes()),

@@ -13,22 +13,13 @@
 
 #include "output/exr_io.h"
 #include "support/run_binary.h"
+#include "support/shipped_scenes.h"
 
 namespace fs = std::filesystem;
 using namespace mixtrace;
 using namespace mixtrace::testing;
 
 namespace {
-
-std::vector<std::string> shippedScenes() {
-  std::vector<std::string> scenes;
-  for (auto& e : fs::directory_iterator(fs::path(MIXTRACE_SOURCE_DIR) / "scenes")) {
-    auto ext = e.path().extension();
-    if (ext == ".gltf" || ext == ".glb") scenes.push_back(e.path().string());
-  }
-  std::sort(scenes.begin(), scenes.end());
-  return scenes;
-}
 
 nlohmann::json readJson(const fs::path& p) {
   std::ifstream f(p);

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "chi2_support.h"
+#include "support/chi2.h"
 #include "shared/sampling.h"
 
 namespace {
