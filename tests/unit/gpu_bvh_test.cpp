@@ -187,17 +187,19 @@ Bounds boundsOf(const std::vector<Triangle>& tris) {
 }  // namespace
 
 TEST(GpuBvh, RandomSoupMatchesBruteForce) {
-  VulkanContext ctx(ContextOptions{});
+  VulkanContext ctx(ContextOptions{"", true});
   for (float scale : {1.0f, 1e-3f, 1e3f}) {
     auto tris = randomSoup(3000, scale, 42);
     checkScene(ctx, tris, boundsOf(tris), 4000, scale == 1.0f ? "soup" : (scale < 1.0f ? "soup 1e-3" : "soup 1e3"));
   }
+  EXPECT_EQ(ctx.validationErrors(), 0u);
 }
 
 TEST(GpuBvh, ShippedScenesMatchBruteForce) {
-  VulkanContext ctx(ContextOptions{});
+  VulkanContext ctx(ContextOptions{"", true});
   for (const std::string& path : mixtrace::testing::shippedScenes()) {
     Scene scene = loadGltf(path);
     checkScene(ctx, scene.triangles, scene.bounds, 3000, scene.name.c_str());
   }
+  EXPECT_EQ(ctx.validationErrors(), 0u);
 }

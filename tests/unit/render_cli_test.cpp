@@ -154,3 +154,25 @@ TEST(TimeBudget, StopsNearTheRequestedTime) {
   EXPECT_LT(j["render_seconds"].get<double>(), 3.0);
   EXPECT_LT(wall, 60.0);
 }
+
+TEST(DeviceSelection, ByIndexByNameAndUnknown) {
+  fs::path dir = scratchDir("device");
+  std::string common = "render --width 16 --height 12 --spp 1 -q --no-png --out " + (dir / "d.exr").string();
+  EXPECT_EQ(runMixtrace(common + " --device 0").exitCode, 0);
+  EXPECT_EQ(runMixtrace(common + " --device llvmpipe").exitCode, 0);
+  expectOneErrorLine(runMixtrace(common + " --device no-such-gpu"), "no-such-gpu");
+}
+
+TEST(VarianceOutput, WritesVarianceOfTheMean) {
+  fs::path dir = scratchDir("variance");
+  ASSERT_EQ(runMixtrace("render --width 32 --height 24 --spp 8 -q --no-png --variance --out " + (dir / "v.exr").string()).exitCode, 0);
+  Image variance;
+  Image mean = readExr((dir / "v.exr").string(), nullptr, &variance);
+  ASSERT_EQ(variance.width, 32);
+  double positive = 0;
+  for (size_t i = 0; i < variance.rgb.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(variance.rgb[i]) && variance.rgb[i] >= 0.0f);
+    positive += variance.rgb[i] > 0.0f;
+  }
+  EXPECT_GT(positive, 0.1 * variance.rgb.size()) << "a noisy render has non-zero variance in many pixels";
+}
