@@ -166,13 +166,12 @@ Image WavefrontRenderer::readImage(Image* variance) const {
   mean.rgb.assign(size_t(pixelCount_) * 3, 0.0f);
   if (variance) *variance = mean;
   if (spp_ == 0) return mean;
+  // Variance of the mean = sample variance / n = M2 / (n (n - 1)).
   const double n = spp_;
   for (size_t p = 0; p < pixelCount_; ++p)
     for (int c = 0; c < 3; ++c) {
-      double sum = film[2 * p][c], sumSq = film[2 * p + 1][c];
-      double m = sum / n;
-      mean.rgb[3 * p + c] = float(m);
-      if (variance && spp_ > 1) variance->rgb[3 * p + c] = float(std::max(0.0, (sumSq / n - m * m) / (n - 1.0)));
+      mean.rgb[3 * p + c] = film[2 * p][c];
+      if (variance && spp_ > 1) variance->rgb[3 * p + c] = float(std::max(0.0, double(film[2 * p + 1][c]) / (n * (n - 1.0))));
     }
   return mean;
 }

@@ -36,7 +36,7 @@ layout(scalar, binding = BINDING_RAY_QUEUE) buffer RayQueueBuf { uint rayQueue[]
 layout(scalar, binding = BINDING_SHADOW_QUEUE) buffer ShadowQueueBuf { ShadowRay shadowQueue[]; };
 layout(scalar, binding = BINDING_QUEUE_STATE) buffer QueueStateBuf { QueueState queues; };
 
-layout(scalar, binding = BINDING_FILM) buffer FilmBuf { vec3 film[]; };  // [2 * pixel] sum, [2 * pixel + 1] sum of squares
+layout(scalar, binding = BINDING_FILM) buffer FilmBuf { vec3 film[]; };  // [2 * pixel] mean, [2 * pixel + 1] sum of squared deviations
 
 #define BVH_NODE(i) bvhNodes[i]
 #define BVH_TRIANGLE(i) triangles[i]

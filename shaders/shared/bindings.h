@@ -27,7 +27,7 @@
 #define BINDING_SHADOW_QUEUE 17
 #define BINDING_QUEUE_STATE 18
 // Film
-#define BINDING_FILM 19           // per pixel: sum and sum of squares (vec3 each)
+#define BINDING_FILM 19           // per pixel: running mean and sum of squared deviations (vec3 each)
 #define BINDING_COUNT 20
 
 // Specialization constants: the scene's feature set (host/scene/features.h fills them).

@@ -1,7 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Stage 5: adds each path's radiance to its pixel (sum and sum of squares, for the variance of
-// the mean). A NaN or Inf sample is counted and dropped: it never reaches the image.
+// Stage 5: folds each path's radiance into its pixel's running mean and sum of squared
+// deviations (Welford's update: unlike a float sum of squares it does not cancel, so the variance
+// of bright, nearly constant pixels stays meaningful). A NaN or Inf sample is counted and enters
+// as 0: it never reaches the image.
 #include "gpu/buffers.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
@@ -12,9 +14,13 @@ void main() {
   vec3 l = radiance[path];
   if (any(isnan(l)) || any(isinf(l))) {
     atomicAdd(queues.nonFinite, 1u);
-    return;
+    l = vec3(0.0);
   }
   uint pixel = pc.pixelOffset + path;
-  film[2u * pixel] += l;
-  film[2u * pixel + 1u] += l * l;
+  float n = float(pc.sampleIndex + 1u);   // every pixel gets one sample per sample pass
+  vec3 mean = film[2u * pixel];
+  vec3 delta = l - mean;
+  mean += delta / n;
+  film[2u * pixel] = mean;
+  film[2u * pixel + 1u] += delta * (l - mean);
 }
