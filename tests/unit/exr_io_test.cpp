@@ -19,29 +19,13 @@
 #include <string>
 #include <vector>
 
+#include "support/scratch_files.h"
 #include "util/error.h"
 
 namespace mixtrace {
 namespace {
 
-// Gives each test its own scratch files in the gtest temp dir and deletes them afterwards.
-class ExrIo : public ::testing::Test {
- protected:
-  std::string tempPath(const std::string& name) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const std::string file =
-        "mixtrace_exr_" + std::string(info->name()) + "_" + std::to_string(::getpid()) + "_" + name;
-    created_.push_back(std::filesystem::path(::testing::TempDir()) / file);
-    return created_.back().string();
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    for (const auto& path : created_) std::filesystem::remove(path, ignored);
-  }
-
- private:
-  std::vector<std::filesystem::path> created_;
-};
+class ExrIo : public mixtrace::testing::ScratchFiles {};
 
 uint32_t bitsOf(float value) {
   uint32_t bits;

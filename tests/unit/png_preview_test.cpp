@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "support/scratch_files.h"
 #include "util/error.h"
 
 #define STB_IMAGE_IMPLEMENTATION
@@ -18,24 +19,7 @@
 namespace mixtrace {
 namespace {
 
-// Gives each test its own scratch files in the gtest temp dir and deletes them afterwards.
-class PngPreview : public ::testing::Test {
- protected:
-  std::string tempPath(const std::string& name) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const std::string file =
-        "mixtrace_png_" + std::string(info->name()) + "_" + std::to_string(::getpid()) + "_" + name;
-    created_.push_back(std::filesystem::path(::testing::TempDir()) / file);
-    return created_.back().string();
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    for (const auto& path : created_) std::filesystem::remove(path, ignored);
-  }
-
- private:
-  std::vector<std::filesystem::path> created_;
-};
+class PngPreview : public mixtrace::testing::ScratchFiles {};
 
 struct Decoded {
   int width = 0, height = 0;
