@@ -5,10 +5,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 #include "output/exr_io.h"
 #include "output/png_preview.h"
 #include "output/render_stats.h"
+#include "cpu/cpu_renderer.h"
 #include "render/wavefront_renderer.h"
 #include "scene/gltf_loader.h"
 #include "scene/prepared_scene.h"
@@ -50,23 +52,29 @@ std::string defaultScenePath() {
 int runRender(const RenderOptions& o) {
   namespace fs = std::filesystem;
   setQuiet(o.quiet);
-  if (o.backend != "vulkan") throw Error("--backend " + o.backend + " is not available yet (use --backend vulkan)");
   const std::string scenePath = o.scene.empty() ? defaultScenePath() : o.scene;
   const std::string outPath = o.out.empty() ? fs::path(scenePath).stem().string() + ".exr" : o.out;
 
   auto setupStart = Clock::now();
   PreparedScene prepared = prepareScene(loadGltf(scenePath), selectionFor(o.method));
-  VulkanContext ctx(ContextOptions{o.device, o.validation});
   RenderSettings settings;
   settings.width = uint32_t(o.width);
   settings.height = uint32_t(o.height);
   settings.maxDepth = uint32_t(o.maxDepth);
   settings.seed = o.seed;
   settings.generalPipelines = o.generalPipelines;
-  WavefrontRenderer renderer(ctx, prepared, settings);
+  std::unique_ptr<VulkanContext> ctx;
+  std::unique_ptr<Renderer> backend;
+  if (o.backend == "cpu") {
+    backend = std::make_unique<CpuRenderer>(prepared, settings);
+  } else {
+    ctx = std::make_unique<VulkanContext>(ContextOptions{o.device, o.validation});
+    backend = std::make_unique<WavefrontRenderer>(*ctx, prepared, settings);
+  }
+  Renderer& renderer = *backend;
   double setupSeconds = secondsSince(setupStart);
   info("scene " + prepared.scene.name + ": " + std::to_string(prepared.scene.triangles.size()) + " triangles, " +
-       std::to_string(prepared.lights.lights.size()) + " lights; device " + ctx.deviceName() + "; " +
+       std::to_string(prepared.lights.lights.size()) + " lights; device " + renderer.deviceName() + "; " +
        prepared.features.describe());
 
   // Sample passes in batches: one sample first to measure, then batches of about 0.25 s so the
@@ -94,13 +102,13 @@ int runRender(const RenderOptions& o) {
 
   Image variance;
   Image image = renderer.readImage(o.variance ? &variance : nullptr);
-  WavefrontRenderer::Counters counters = renderer.counters();
+  RenderCounters counters = renderer.counters();
 
   RenderStats stats;
   stats.scene = prepared.scene.name;
   stats.method = o.method;
   stats.backend = o.backend;
-  stats.device = ctx.deviceName();
+  stats.device = renderer.deviceName();
   stats.features = (o.generalPipelines ? FeatureSet::general() : prepared.features).describe();
   stats.width = uint32_t(o.width);
   stats.height = uint32_t(o.height);
@@ -116,7 +124,7 @@ int runRender(const RenderOptions& o) {
   stats.extensionRays = counters.extensionRays;
   stats.shadowRays = counters.shadowRays;
   stats.nonFiniteSamples = counters.nonFiniteSamples;
-  stats.validationErrors = ctx.validationErrors();
+  stats.validationErrors = ctx ? ctx->validationErrors() : 0;
   stats.passMs = renderer.passTimesMs();
 
   ExrMetadata meta;

@@ -176,10 +176,12 @@ Image WavefrontRenderer::readImage(Image* variance) const {
   return mean;
 }
 
-WavefrontRenderer::Counters WavefrontRenderer::counters() const {
+std::string WavefrontRenderer::deviceName() const { return ctx_.deviceName(); }
+
+RenderCounters WavefrontRenderer::counters() const {
   shared::QueueState q{};
   queueState_.download(&q, sizeof(q));
-  Counters c;
+  RenderCounters c;
   c.nonFiniteSamples = q.nonFinite;
   c.extensionRays = uint64_t(q.extensionRays[0]) | (uint64_t(q.extensionRays[1]) << 32);
   c.shadowRays = uint64_t(q.shadowRays[0]) | (uint64_t(q.shadowRays[1]) << 32);

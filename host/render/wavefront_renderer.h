@@ -11,6 +11,7 @@
 
 #include "output/image.h"
 #include "render/gpu_scene.h"
+#include "render/renderer.h"
 #include "scene/prepared_scene.h"
 #include "vulkan/buffer.h"
 #include "vulkan/pass_timer.h"
@@ -20,32 +21,17 @@ namespace mixtrace {
 
 class VulkanContext;
 
-struct RenderSettings {
-  uint32_t width = 320;
-  uint32_t height = 240;
-  uint32_t maxDepth = 5;
-  uint32_t seed = 0;
-  bool generalPipelines = false;   // ignore the feature set (testing aid)
-  uint32_t maxPathsPerChunk = 1u << 20;  // the wavefront's width; larger images go in chunks
-};
-
-class WavefrontRenderer {
+class WavefrontRenderer : public Renderer {
  public:
   WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const RenderSettings& settings);
-  ~WavefrontRenderer();
+  ~WavefrontRenderer() override;
 
-  // Renders `count` more samples per pixel; blocks until the GPU is done.
-  void renderSamples(uint32_t count);
-  uint32_t samplesPerPixel() const { return spp_; }
-  // Mean radiance per pixel, and the variance of that mean when `variance` is given.
-  Image readImage(Image* variance = nullptr) const;
-  struct Counters {
-    uint64_t nonFiniteSamples = 0;
-    uint64_t extensionRays = 0;
-    uint64_t shadowRays = 0;
-  };
-  Counters counters() const;
-  std::map<std::string, double> passTimesMs() const { return timer_.totalsMs(); }
+  void renderSamples(uint32_t count) override;
+  uint32_t samplesPerPixel() const override { return spp_; }
+  Image readImage(Image* variance = nullptr) const override;
+  RenderCounters counters() const override;
+  std::map<std::string, double> passTimesMs() const override { return timer_.totalsMs(); }
+  std::string deviceName() const override;
   uint32_t pathsPerChunk() const { return pathCount_; }
 
  private:

@@ -1,0 +1,176 @@
+#include "cpu/cpu_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "scene/shared_scene_access.h"
+#include "shared/bsdf.h"
+#include "shared/camera.h"
+#include "shared/ray_offset.h"
+#include "shared/rng.h"
+#include "shared/sampling.h"
+
+namespace mixtrace {
+namespace {
+
+constexpr uint32_t kTileSize = 16;
+
+bool isBlack(const glm::vec3& c) { return !(c.x > 0.0f || c.y > 0.0f || c.z > 0.0f); }
+
+// One path through the scene: emission at every vertex (MIS-weighted against light sampling),
+// one light sample and one BSDF sample per vertex, balance heuristic. Returns its radiance.
+glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32_t maxDepth, uint32_t lightCount,
+                    RenderCounters& counters) {
+  using namespace shared;
+  vec3 radiance(0.0f), throughput(1.0f);
+  float previousBsdfPdf = 0.0f;  // 0: camera ray, whose emitter hits take no MIS weight
+  for (uint32_t depth = 1; depth <= maxDepth; ++depth) {
+    ++counters.extensionRays;
+    HitRecord hit = traceClosest(origin, direction, kFloatMax);
+    if (hit.triangle == kNoHit) break;
+    SurfaceHit sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
+
+    if (TRIANGLE_SHADING(hit.triangle).emitter >= 0) {
+      vec3 le = emittedRadiance(hit.triangle, hit.u, hit.v, -direction);
+      float weight = 1.0f;
+      if (previousBsdfPdf > 0.0f) {
+        float lightPdf = areaLightPdf(hit.triangle, origin, sh.position);
+        weight = previousBsdfPdf / (previousBsdfPdf + lightPdf);
+      }
+      radiance += throughput * le * weight;
+    }
+    if (depth == maxDepth) break;
+
+    BsdfParams bsdf = surfaceBsdf(sh);
+    OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
+    vec3 wo = toLocal(frame, -direction);
+    vec3 next = offsetRayOrigin(sh.position, sh.geometricNormal);
+
+    float uLight = rngNextFloat(rng);
+    float uEmitter = rngNextFloat(rng);
+    // Draws in named steps: C++ leaves the order of constructor arguments unspecified, and the
+    // same seed should give the GPU's random numbers in the GPU's order.
+    float uPointX = rngNextFloat(rng);
+    float uPointY = rngNextFloat(rng);
+    vec2 uPoint(uPointX, uPointY);
+    LightSample ls;
+    if (lightCount > 0 && sampleLight(sh.position, lightCount, uLight, uEmitter, uPoint, ls) &&
+        dot(ls.direction, sh.geometricNormal) > 0.0f) {
+      vec3 wi = toLocal(frame, ls.direction);
+      vec3 f = bsdfEval(bsdf, wo, wi) * std::abs(wi.z);
+      float weight = ls.isDelta ? 1.0f : ls.pdf / (ls.pdf + bsdfPdf(bsdf, wo, wi));
+      vec3 contribution = throughput * f * ls.radiance * (weight / ls.pdf);
+      if (!isBlack(contribution)) {
+        float tMax = kFloatMax;
+        if (ls.distance < kFloatMax) {
+          vec3 target = ls.isDelta ? ls.position
+                                   : offsetRayOrigin(ls.position, dot(ls.normal, ls.direction) < 0.0f ? ls.normal : -ls.normal);
+          tMax = dot(target - next, ls.direction);
+        }
+        ++counters.shadowRays;
+        if (!traceAny(next, ls.direction, tMax)) radiance += contribution;
+      }
+    }
+
+    float uDirectionX = rngNextFloat(rng);
+    float uDirectionY = rngNextFloat(rng);
+    vec2 uDirection(uDirectionX, uDirectionY);
+    float uLobe = rngNextFloat(rng);
+    vec3 wiLocal;
+    float pdf;
+    if (!bsdfSample(bsdf, wo, uDirection, uLobe, wiLocal, pdf) || !(pdf > 0.0f)) break;
+    vec3 wiWorld = toWorld(frame, wiLocal);
+    if (!(dot(wiWorld, sh.geometricNormal) > 0.0f)) break;
+    vec3 weight = bsdfEval(bsdf, wo, wiLocal) * (std::abs(wiLocal.z) / pdf);
+    if (isBlack(weight)) break;
+    throughput *= weight;
+    previousBsdfPdf = pdf;
+    origin = next;
+    direction = wiWorld;
+  }
+  return radiance;
+}
+
+}  // namespace
+
+CpuRenderer::CpuRenderer(const PreparedScene& scene, const RenderSettings& settings)
+    : scene_(scene),
+      settings_(settings),
+      camera_(makeCamera(scene.scene, settings.width, settings.height)),
+      lightCount_(uint32_t(scene.lights.lights.size())),
+      threads_(settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency())),
+      film_(size_t(settings.width) * settings.height) {
+  gSharedScene = &scene_;
+}
+
+std::string CpuRenderer::deviceName() const {
+  return "CPU reference (" + std::to_string(threads_) + " threads)";
+}
+
+void CpuRenderer::renderTile(uint32_t tile, uint32_t count, RenderCounters& local) {
+  const uint32_t tilesX = (settings_.width + kTileSize - 1) / kTileSize;
+  const uint32_t x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
+  const uint32_t x1 = std::min(x0 + kTileSize, settings_.width), y1 = std::min(y0 + kTileSize, settings_.height);
+  for (uint32_t y = y0; y < y1; ++y)
+    for (uint32_t x = x0; x < x1; ++x) {
+      const uint32_t pixel = y * settings_.width + x;
+      PixelStats& stats = film_[pixel];
+      for (uint32_t s = 0; s < count; ++s) {
+        const uint32_t sampleIndex = spp_ + s;
+        uint32_t rng = shared::rngInit(pixel, sampleIndex, settings_.seed);
+        float jitterX = shared::rngNextFloat(rng);
+        float jitterY = shared::rngNextFloat(rng);
+        glm::vec2 jitter(jitterX, jitterY);
+        glm::vec3 direction = shared::cameraRayDirection(camera_, x, y, jitter);
+        glm::vec3 l = tracePath(camera_.position, direction, rng, settings_.maxDepth, lightCount_, local);
+        if (!std::isfinite(l.x) || !std::isfinite(l.y) || !std::isfinite(l.z)) {
+          ++local.nonFiniteSamples;
+          l = glm::vec3(0.0f);
+        }
+        const double n = double(sampleIndex) + 1.0;
+        for (int c = 0; c < 3; ++c) {
+          double delta = double(l[c]) - stats.mean[c];
+          stats.mean[c] += delta / n;
+          stats.m2[c] += delta * (double(l[c]) - stats.mean[c]);
+        }
+      }
+    }
+}
+
+void CpuRenderer::renderSamples(uint32_t count) {
+  gSharedScene = &scene_;
+  const uint32_t tiles = ((settings_.width + kTileSize - 1) / kTileSize) * ((settings_.height + kTileSize - 1) / kTileSize);
+  std::atomic<uint32_t> nextTile{0};
+  std::mutex merge;
+  auto worker = [&] {
+    RenderCounters local;
+    for (uint32_t t = nextTile++; t < tiles; t = nextTile++) renderTile(t, count, local);
+    std::lock_guard<std::mutex> lock(merge);
+    counters_.nonFiniteSamples += local.nonFiniteSamples;
+    counters_.extensionRays += local.extensionRays;
+    counters_.shadowRays += local.shadowRays;
+  };
+  std::vector<std::thread> pool;
+  for (uint32_t i = 1; i < threads_; ++i) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  spp_ += count;
+}
+
+Image CpuRenderer::readImage(Image* variance) const {
+  Image mean(int(settings_.width), int(settings_.height));
+  if (variance) *variance = Image(int(settings_.width), int(settings_.height));
+  const double n = spp_;
+  for (size_t p = 0; p < film_.size(); ++p)
+    for (int c = 0; c < 3; ++c) {
+      mean.rgb[3 * p + c] = float(film_[p].mean[c]);
+      if (variance && spp_ > 1) variance->rgb[3 * p + c] = float(film_[p].m2[c] / (n * (n - 1.0)));
+    }
+  return mean;
+}
+
+RenderCounters CpuRenderer::counters() const { return counters_; }
+
+}  // namespace mixtrace

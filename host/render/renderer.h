@@ -1,0 +1,42 @@
+#pragma once
+// What the render command needs from a backend: the Vulkan wavefront renderer
+// (render/wavefront_renderer.h) and the CPU reference (cpu/cpu_renderer.h) implement it.
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "output/image.h"
+
+namespace mixtrace {
+
+struct RenderSettings {
+  uint32_t width = 320;
+  uint32_t height = 240;
+  uint32_t maxDepth = 5;
+  uint32_t seed = 0;
+  bool generalPipelines = false;         // Vulkan: ignore the feature set (testing aid)
+  uint32_t maxPathsPerChunk = 1u << 20;  // Vulkan: the wavefront's width; larger images go in chunks
+  uint32_t threads = 0;                  // CPU: worker threads, 0 = one per core
+};
+
+struct RenderCounters {
+  uint64_t nonFiniteSamples = 0;  // NaN/Inf samples caught; they enter the image as 0
+  uint64_t extensionRays = 0;
+  uint64_t shadowRays = 0;
+};
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+  // Renders `count` more samples per pixel; returns when they are done.
+  virtual void renderSamples(uint32_t count) = 0;
+  virtual uint32_t samplesPerPixel() const = 0;
+  // Mean radiance per pixel, and the variance of that mean when `variance` is given.
+  virtual Image readImage(Image* variance = nullptr) const = 0;
+  virtual RenderCounters counters() const = 0;
+  // Time per pass in milliseconds (GPU timestamp queries; empty where there are no passes).
+  virtual std::map<std::string, double> passTimesMs() const = 0;
+  virtual std::string deviceName() const = 0;
+};
+
+}  // namespace mixtrace
