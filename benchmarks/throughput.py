@@ -16,8 +16,8 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def render(binary, scene, args, stats_path):
-    cmd = [binary, "render", scene, "--width", str(args.width), "--height", str(args.height),
+def render(binary, scene, args, stats_path, backend="vulkan"):
+    cmd = [binary, "render", scene, "--backend", backend, "--width", str(args.width), "--height", str(args.height),
            "--max-depth", str(args.max_depth), "--spp", str(args.spp), "--method", args.method,
            "-q", "--no-png", "--out", os.path.join(os.path.dirname(stats_path), "out.exr"), "--stats", stats_path]
     subprocess.run(cmd, check=True)
@@ -35,6 +35,8 @@ def main():
     ap.add_argument("--method", default="pt-power")
     ap.add_argument("--repeat", type=int, default=3, help="runs per scene; the fastest is reported")
     ap.add_argument("--markdown", action="store_true")
+    ap.add_argument("--compare-cpu", action="store_true",
+                    help="also render each scene with --backend cpu and report both backends' samples/s")
     ap.add_argument("scenes", nargs="*")
     args = ap.parse_args()
     scenes = args.scenes or sorted(glob.glob(os.path.join(ROOT, "scenes", "*.gltf")) + glob.glob(os.path.join(ROOT, "scenes", "*.glb")))
@@ -47,10 +49,19 @@ def main():
                 s = render(args.binary, scene, args, os.path.join(tmp, "stats.json"))
                 if best is None or s["samples_per_second"] > best["samples_per_second"]:
                     best = s
+            if args.compare_cpu:
+                cpu = None
+                for _ in range(args.repeat):
+                    c = render(args.binary, scene, args, os.path.join(tmp, "stats.json"), "cpu")
+                    if cpu is None or c["samples_per_second"] > cpu["samples_per_second"]:
+                        cpu = c
+                best["cpu"] = cpu
             rows.append(best)
     device = rows[0]["device"] if rows else "?"
     print(f"# {device}, {args.width}x{args.height}, max depth {args.max_depth}, {args.spp} spp, method {args.method}, best of {args.repeat}")
     head = ["scene", "tris", "Msamples/s", "Mrays/s"] + [p + " %" for p in passes]
+    if args.compare_cpu:
+        head += ["CPU Msamples/s", "Vulkan/CPU"]
     if args.markdown:
         print("| " + " | ".join(head) + " |")
         print("|" + "---|" * len(head))
@@ -60,6 +71,9 @@ def main():
         total = sum(s["gpu_pass_ms"].values()) or 1.0
         cells = [s["scene"], str(s["triangles"]), f"{s['samples_per_second'] / 1e6:.2f}", f"{s['rays_per_second'] / 1e6:.2f}"]
         cells += [f"{100 * s['gpu_pass_ms'].get(p, 0.0) / total:.0f}" for p in passes]
+        if args.compare_cpu:
+            cpu_rate = s["cpu"]["samples_per_second"]
+            cells += [f"{cpu_rate / 1e6:.2f}", f"{s['samples_per_second'] / cpu_rate:.2f}x"]
         print(("| " + " | ".join(cells) + " |") if args.markdown else "  ".join(f"{c:>12}" for c in cells))
 
 
