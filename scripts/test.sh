@@ -6,4 +6,5 @@ bash scripts/setup.sh
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp/xdg-runtime-$(id -u)}
 mkdir -p "$XDG_RUNTIME_DIR" && chmod 700 "$XDG_RUNTIME_DIR"
 cd build
-ctest --output-on-failure -j2 "$@"
+# The long statistical variant runs on request: (cd build && ctest -L long)
+ctest --output-on-failure -j2 -LE long "$@"

@@ -10,6 +10,7 @@
 #include "output/exr_io.h"
 #include "support/run_binary.h"
 #include "support/shipped_scenes.h"
+#include "support/test_level.h"
 
 namespace fs = std::filesystem;
 using namespace mixtrace;
@@ -23,8 +24,9 @@ TEST_P(MethodAgreement, UniformAndPowerSelectionAgree) {
   const char* methods[2] = {"pt-uniform", "pt-power"};
   for (int m = 0; m < 2; ++m) {
     fs::path out = dir / (std::string(methods[m]) + ".exr");
-    RunResult r = runMixtrace("render " + GetParam() + " --width 48 --height 36 --spp 256 --seed " + std::to_string(m + 1) +
-                              " --method " + methods[m] + " --variance -q --no-png --out " + out.string());
+    const std::string size = byTestLevel<std::string>("--width 48 --height 36 --spp 256", "--width 160 --height 120 --spp 2048");
+    RunResult r = runMixtrace("render " + GetParam() + " " + size + " --seed " + std::to_string(m + 1) +
+                              " --method " + methods[m] + " --variance -q --no-png --out " + out.string(), "", 3000);
     ASSERT_EQ(r.exitCode, 0) << r.stderrText;
     mean[m] = readExr(out.string(), nullptr, &variance[m]);
   }
