@@ -63,14 +63,8 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
       float weight = ls.isDelta ? 1.0f : ls.pdf / (ls.pdf + bsdfPdf(bsdf, wo, wi));
       vec3 contribution = throughput * f * ls.radiance * (weight / ls.pdf);
       if (!isBlack(contribution)) {
-        float tMax = kFloatMax;
-        if (ls.distance < kFloatMax) {
-          vec3 target = ls.isDelta ? ls.position
-                                   : offsetRayOrigin(ls.position, dot(ls.normal, ls.direction) < 0.0f ? ls.normal : -ls.normal);
-          tMax = dot(target - next, ls.direction);
-        }
         ++counters.shadowRays;
-        if (!traceAny(next, ls.direction, tMax)) radiance += contribution;
+        if (!traceAny(next, ls.direction, shadowRayLength(next, ls))) radiance += contribution;
       }
     }
 

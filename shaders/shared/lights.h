@@ -10,6 +10,7 @@
 #include "shared/constants.h"
 #include "shared/dialect.h"
 #include "shared/layouts.h"
+#include "shared/ray_offset.h"
 #include "shared/sampling.h"
 #include "shared/texture.h"
 SHARED_BEGIN_WITH_BUFFERS
@@ -151,6 +152,16 @@ SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter
     return s.radiance.x > 0.0f || s.radiance.y > 0.0f || s.radiance.z > 0.0f;
   }
   return false;
+}
+
+// The extent of the shadow ray from `origin` (already offset off its surface) towards the light
+// sample: up to the light point, itself offset towards the origin so the emitter never occludes
+// its own sample; unbounded for directional lights.
+SHARED_FN float shadowRayLength(vec3 origin, LightSample s) {
+  if (s.distance >= kFloatMax) return kFloatMax;
+  vec3 target = s.isDelta ? s.position
+                          : offsetRayOrigin(s.position, dot(s.normal, s.direction) < 0.0f ? s.normal : -s.normal);
+  return dot(target - origin, s.direction);
 }
 
 SHARED_END_WITH_BUFFERS

@@ -61,14 +61,7 @@ void main() {
       s.path = path;
       s.contribution = contribution;
       s.pad = 0.0;
-      if (ls.distance >= kFloatMax) {
-        s.tMax = kFloatMax;
-      } else {
-        // Stop short of the light: offset its point towards the shading point like an origin.
-        vec3 target = ls.isDelta ? ls.position
-                                 : offsetRayOrigin(ls.position, dot(ls.normal, ls.direction) < 0.0 ? ls.normal : -ls.normal);
-        s.tMax = dot(target - origin, ls.direction);
-      }
+      s.tMax = shadowRayLength(origin, ls);
       uint slot = atomicAdd(queues.shadowCount, 1u);
       shadowQueue[slot] = s;
     }
