@@ -8,9 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include "compare/image_compare.h"
 #include "output/exr_io.h"
 #include "support/run_binary.h"
 #include "support/shipped_scenes.h"
+#include "support/test_level.h"
 
 namespace fs = std::filesystem;
 using namespace mixtrace;
@@ -31,11 +33,12 @@ std::vector<Case> allCases() {
   return cases;
 }
 
-Image renderWith(const Case& c, const std::string& backend, const std::string& extra, const fs::path& out) {
+Image renderWith(const Case& c, const std::string& backend, const std::string& extra, const fs::path& out,
+                 Image* variance = nullptr) {
   RunResult r = runMixtrace("render " + c.scene + " --method " + c.method + " --backend " + backend +
-                            " -q --no-png " + extra + " --out " + out.string());
+                            " -q --no-png " + extra + " --out " + out.string(), "", 3000);
   EXPECT_EQ(r.exitCode, 0) << r.stderrText;
-  return readExr(out.string());
+  return readExr(out.string(), nullptr, variance);
 }
 
 }  // namespace
@@ -53,6 +56,16 @@ TEST_P(BackendAgreement, SameSeedTracesTheSamePaths) {
     if (std::abs(gpu.rgb[i] - cpu.rgb[i]) > 1e-3f * std::max(1e-2f, std::abs(cpu.rgb[i]))) ++differing;
   // A few paths diverge where a ray grazes an edge and float rounding differs between the two.
   EXPECT_LE(differing, gpu.rgb.size() / 200) << differing << " of " << gpu.rgb.size() << " channels differ";
+}
+
+TEST_P(BackendAgreement, IndependentImagesAgreeStatistically) {
+  fs::path dir = scratchDir("backends-stat");
+  const std::string size = byTestLevel<std::string>("--width 48 --height 36 --spp 128", "--width 160 --height 120 --spp 1024");
+  Image gpuVar, cpuVar;
+  Image gpu = renderWith(GetParam(), "vulkan", size + " --variance --seed 11", dir / "gpu.exr", &gpuVar);
+  Image cpu = renderWith(GetParam(), "cpu", size + " --variance --seed 12", dir / "cpu.exr", &cpuVar);
+  ComparisonResult r = compareImages(gpu, gpuVar, cpu, cpuVar);
+  EXPECT_TRUE(r.agree) << r.summary();
 }
 
 INSTANTIATE_TEST_SUITE_P(ScenesAndMethods, BackendAgreement, ::testing::ValuesIn(allCases()), [](const auto& info) {
