@@ -73,15 +73,33 @@ std::string oneOf(const std::string& option, const std::string& value, const std
   return value;
 }
 
-// One row per option. `apply` receives the option's canonical long name for error messages.
+// A number in [lo, hi], or in (lo, hi) when `open`; the whole string must be the number.
+double parseFraction(const std::string& option, const std::string& value, bool open) {
+  const std::string expectation = open ? "a number between 0 and 1 (exclusive)" : "a number in 0..1";
+  const auto fail = [&] { throw Error("invalid value '" + value + "' for " + option + ": expected " + expectation); };
+  if (value.empty() || std::isspace(static_cast<unsigned char>(value[0]))) fail();
+  errno = 0;
+  char* end = nullptr;
+  const double number = std::strtod(value.c_str(), &end);
+  if (errno == ERANGE || end != value.c_str() + value.size() || !std::isfinite(number)) fail();
+  if (open ? !(number > 0.0 && number < 1.0) : !(number >= 0.0 && number <= 1.0)) fail();
+  return number;
+}
+
+// One row per option of a command whose options land in `Options`. `apply` receives the
+// option's canonical long name for error messages.
+template <typename Options>
 struct OptionSpec {
   const char* name;
   const char* shortName;  // nullptr when there is none
   bool takesValue;
-  void (*apply)(RenderOptions& options, const std::string& name, const std::string& value);
+  void (*apply)(Options& options, const std::string& name, const std::string& value);
 };
 
-const OptionSpec kOptionSpecs[] = {
+using RenderOptionSpec = OptionSpec<RenderOptions>;
+using CompareOptionSpec = OptionSpec<CompareOptions>;
+
+const RenderOptionSpec kOptionSpecs[] = {
     {"--out", nullptr, true, [](RenderOptions& o, const std::string&, const std::string& v) { o.out = v; }},
     {"--spp", nullptr, true,
      [](RenderOptions& o, const std::string& n, const std::string& v) {
@@ -122,8 +140,20 @@ const OptionSpec kOptionSpecs[] = {
     {"--variance", nullptr, false, [](RenderOptions& o, const std::string&, const std::string&) { o.variance = true; }},
 };
 
-const OptionSpec* findOption(const std::string& name) {
-  for (const OptionSpec& spec : kOptionSpecs)
+const CompareOptionSpec kCompareOptionSpecs[] = {
+    {"--alpha", nullptr, true,
+     [](CompareOptions& o, const std::string& n, const std::string& v) { o.alpha = parseFraction(n, v, true); }},
+    {"--max-fail-fraction", nullptr, true,
+     [](CompareOptions& o, const std::string& n, const std::string& v) {
+       o.maxFailFraction = parseFraction(n, v, false);
+     }},
+    {"--json", nullptr, true, [](CompareOptions& o, const std::string&, const std::string& v) { o.reportJson = v; }},
+    {"--quiet", "-q", false, [](CompareOptions& o, const std::string&, const std::string&) { o.quiet = true; }},
+};
+
+template <typename Options, size_t N>
+const OptionSpec<Options>* findOption(const OptionSpec<Options> (&specs)[N], const std::string& name) {
+  for (const OptionSpec<Options>& spec : specs)
     if (name == spec.name || (spec.shortName && name == spec.shortName)) return &spec;
   return nullptr;
 }
@@ -140,20 +170,20 @@ bool endsWith(const std::string& text, const std::string& suffix) {
   return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-ParsedCommandLine parseRender(const std::vector<std::string>& args) {
-  ParsedCommandLine result;
-  result.command = Command::Render;
-
-  // --help anywhere (before "--") wins over everything else, even over mistakes elsewhere.
+// --help anywhere (before "--") wins over everything else, even over mistakes elsewhere.
+bool asksForHelp(const std::vector<std::string>& args) {
   for (const std::string& arg : args) {
     if (arg == "--") break;
-    if (isHelpFlag(arg)) {
-      result.command = Command::Help;
-      return result;
-    }
+    if (isHelpFlag(arg)) return true;
   }
+  return false;
+}
 
-  RenderOptions& options = result.render;
+// The shared grammar of a command's arguments: options from `specs` ("--opt value", "--opt=value",
+// short flags), "--" ending the options, and everything else handed to `positional` in order.
+template <typename Options, size_t N, typename Positional>
+void parseArguments(const std::vector<std::string>& args, const OptionSpec<Options> (&specs)[N], Options& options,
+                    const std::string& commandName, Positional positional) {
   bool onlyPositionals = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
@@ -172,8 +202,8 @@ ParsedCommandLine parseRender(const std::vector<std::string>& args) {
         value = arg.substr(equals + 1);
         hasInlineValue = true;
       }
-      const OptionSpec* spec = findOption(name);
-      if (!spec) throw Error("unknown option '" + name + "' (see 'mixtrace render --help')");
+      const OptionSpec<Options>* spec = findOption(specs, name);
+      if (!spec) throw Error("unknown option '" + name + "' (see 'mixtrace " + commandName + " --help')");
       if (!spec->takesValue) {
         if (hasInlineValue) throw Error("option " + std::string(spec->name) + " takes no value");
       } else if (!hasInlineValue) {
@@ -185,11 +215,40 @@ ParsedCommandLine parseRender(const std::vector<std::string>& args) {
       spec->apply(options, spec->name, value);
       continue;
     }
+    positional(arg);
+  }
+}
+
+ParsedCommandLine parseRender(const std::vector<std::string>& args) {
+  ParsedCommandLine result;
+  result.command = asksForHelp(args) ? Command::Help : Command::Render;
+  if (result.command == Command::Help) return result;
+
+  RenderOptions& options = result.render;
+  parseArguments(args, kOptionSpecs, options, "render", [&](const std::string& arg) {
     if (!options.scene.empty())
       throw Error("two scene paths given ('" + options.scene + "' and '" + arg + "'); render takes one SCENE");
     if (arg.empty()) throw Error("empty scene path");
     options.scene = arg;
-  }
+  });
+  return result;
+}
+
+ParsedCommandLine parseCompare(const std::vector<std::string>& args) {
+  ParsedCommandLine result;
+  result.command = asksForHelp(args) ? Command::Help : Command::Compare;
+  if (result.command == Command::Help) return result;
+
+  CompareOptions& options = result.compare;
+  int images = 0;
+  parseArguments(args, kCompareOptionSpecs, options, "compare", [&](const std::string& arg) {
+    if (arg.empty()) throw Error("empty image path");
+    if (images == 2)
+      throw Error("too many images ('" + arg + "' after '" + options.a + "' and '" + options.b +
+                  "'); compare takes two: A.exr B.exr");
+    (images++ == 0 ? options.a : options.b) = arg;
+  });
+  if (images < 2) throw Error("compare needs two images (usage: mixtrace compare A.exr B.exr [options])");
   return result;
 }
 
@@ -214,11 +273,12 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
     return result;
   }
   if (command == "render") return parseRender(std::vector<std::string>(args.begin() + 1, args.end()));
+  if (command == "compare") return parseCompare(std::vector<std::string>(args.begin() + 1, args.end()));
   if (looksLikeOption(command))
     throw Error("unknown option '" + command + "' before a command (usage: mixtrace render [SCENE] [options])");
   if (endsWith(command, ".gltf") || endsWith(command, ".glb"))
     throw Error("unknown command '" + command + "' (did you mean 'mixtrace render " + command + "'?)");
-  throw Error("unknown command '" + command + "' (commands: render, help; see 'mixtrace --help')");
+  throw Error("unknown command '" + command + "' (commands: render, compare, help; see 'mixtrace --help')");
 }
 
 std::string helpText() {
@@ -229,6 +289,9 @@ std::string helpText() {
           "\n"
           "Usage:\n"
           "  mixtrace render [SCENE] [options]  render SCENE (.gltf/.glb) to OpenEXR\n"
+          "  mixtrace compare A.exr B.exr [options]\n"
+          "                                     test whether two renders made with\n"
+          "                                     --variance estimate the same image\n"
           "  mixtrace help | --help | -h         print this text (or: render --help)\n"
           "  mixtrace --version                  print the version\n"
           "\n"
@@ -290,6 +353,28 @@ std::string helpText() {
           "  --general-pipelines  do not specialise the GPU pipelines on the\n"
           "                       scene's features (testing aid; same image)\n"
           "\n"
+          "Compare (mixtrace compare A.exr B.exr [options]):\n"
+          "  Both images need the variance channels written by render --variance.\n"
+          "  Each pixel-channel is z-tested, z = (a - b) / sqrt(varA + varB), against\n"
+          "  a threshold corrected for the number of pixel-channels; a few failures\n"
+          "  (max(2, 0.1%)) are tolerated as heavy-tailed Monte Carlo outliers. Each\n"
+          "  channel's image mean is z-tested too (catches small global biases).\n"
+          "  Prints one line: verdict, fraction failing, relMSE of A against B,\n"
+          "  per-channel mean ratios A/B and their z-scores. Render both with at\n"
+          "  least 16 spp: below that the per-pixel z-scores are too heavy-tailed.\n"
+          "  --alpha A            family-wise significance, 0 < A < 1 (default: "
+       << CompareOptions().alpha
+       << ")\n"
+          "  --max-fail-fraction F\n"
+          "                       tolerate up to F (0..1) of pixel-channels failing\n"
+          "                       instead of max(2, 0.1%)\n"
+          "  --json FILE.json     write the full result as JSON\n"
+          "  -q, --quiet          no summary line; the exit status tells\n"
+          "  Exit status: "
+       << kCompareExitAgree << " the images agree, " << kCompareExitDiffer << " they differ, " << kCompareExitError
+       << " error (bad\n"
+          "  arguments, unreadable file, no variance, different sizes).\n"
+          "\n"
           "Examples:\n"
           "  mixtrace render\n"
           "      the default scene, "
@@ -297,7 +382,8 @@ std::string helpText() {
        << " spp, to <default scene>.exr and .png\n"
           "  mixtrace render scenes/cornell_box.gltf --spp 256 --out cornell.exr\n"
           "  mixtrace render scene.glb --time 10 --width 640 --height 480\n"
-          "  mixtrace render scene.glb --method=pt-uniform --backend=cpu --seed 7\n";
+          "  mixtrace render scene.glb --method=pt-uniform --backend=cpu --seed 7\n"
+          "  mixtrace compare new.exr reference.exr --json report.json\n";
   return text.str();
 }
 

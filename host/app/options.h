@@ -1,6 +1,7 @@
 #pragma once
 // Command-line grammar of the mixtrace binary:
 //   mixtrace render [SCENE] [options]
+//   mixtrace compare A.exr B.exr [options]
 //   mixtrace help | --help | -h        (also: mixtrace render --help)
 //   mixtrace --version
 // Parsing only: nothing here prints, touches files or resolves defaults that need the scene.
@@ -10,7 +11,7 @@
 
 namespace mixtrace {
 
-enum class Command { Render, Help, Version };
+enum class Command { Render, Compare, Help, Version };
 
 // Samples per pixel used when neither --spp nor --time is given. The help text quotes it, so the
 // renderer should use this constant rather than its own literal.
@@ -35,9 +36,25 @@ struct RenderOptions {
   bool variance = false;         // --variance: also write per-pixel variance of the mean
 };
 
+// `mixtrace compare`: a statistical test of whether two renders (written with --variance) estimate
+// the same image; see compare/image_compare.h for the rule.
+struct CompareOptions {
+  std::string a, b;              // the two EXR files; B is the reference for relMSE
+  double alpha = 0.01;           // --alpha: family-wise significance, in (0, 1)
+  double maxFailFraction = -1;   // --max-fail-fraction: tolerated failing fraction; < 0 = default rule
+  std::string reportJson;        // --json FILE: write the full result as JSON
+  bool quiet = false;            // -q/--quiet: no summary line, only the exit code
+};
+
+// Exit codes of `mixtrace compare` (documented in --help), like diff(1).
+constexpr int kCompareExitAgree = 0;
+constexpr int kCompareExitDiffer = 1;
+constexpr int kCompareExitError = 2;
+
 struct ParsedCommandLine {
   Command command = Command::Help;
   RenderOptions render;
+  CompareOptions compare;
 };
 
 // argv[0] is the program name and is ignored. Throws mixtrace::Error with a one-line message

@@ -206,6 +206,7 @@ TEST(Options, UnknownMethodOrBackendListsTheValidOnes) {
 
 TEST(Options, UnknownCommand) {
   expectOneLineMentioning(errorOf({"draw"}), "draw");
+  expectOneLineMentioning(errorOf({"draw"}), "compare");
   // A scene given without the command gets a hint.
   expectOneLineMentioning(errorOf({"scene.gltf"}), "mixtrace render scene.gltf");
 }
@@ -214,6 +215,62 @@ TEST(Options, TwoScenePaths) {
   const std::string message = errorOf({"render", "a.gltf", "--spp", "4", "b.gltf"});
   expectOneLineMentioning(message, "a.gltf");
   expectOneLineMentioning(message, "b.gltf");
+}
+
+TEST(Options, CompareDefaultsAndEveryOption) {
+  ParsedCommandLine parsed = parse({"compare", "a.exr", "b.exr"});
+  ASSERT_EQ(parsed.command, Command::Compare);
+  EXPECT_EQ(parsed.compare.a, "a.exr");
+  EXPECT_EQ(parsed.compare.b, "b.exr");
+  EXPECT_DOUBLE_EQ(parsed.compare.alpha, 0.01);
+  EXPECT_LT(parsed.compare.maxFailFraction, 0.0);
+  EXPECT_EQ(parsed.compare.reportJson, "");
+  EXPECT_FALSE(parsed.compare.quiet);
+
+  parsed = parse({"compare", "--alpha", "0.05", "a.exr", "--json=r.json", "-q", "b.exr", "--max-fail-fraction", "0.002"});
+  ASSERT_EQ(parsed.command, Command::Compare);
+  EXPECT_EQ(parsed.compare.a, "a.exr");
+  EXPECT_EQ(parsed.compare.b, "b.exr");
+  EXPECT_DOUBLE_EQ(parsed.compare.alpha, 0.05);
+  EXPECT_DOUBLE_EQ(parsed.compare.maxFailFraction, 0.002);
+  EXPECT_EQ(parsed.compare.reportJson, "r.json");
+  EXPECT_TRUE(parsed.compare.quiet);
+  EXPECT_EQ(parse({"compare", "a.exr", "--", "-b.exr"}).compare.b, "-b.exr");
+  // The render options are not compare options.
+  expectOneLineMentioning(errorOf({"compare", "a.exr", "b.exr", "--spp", "4"}), "--spp");
+  expectOneLineMentioning(errorOf({"compare", "a.exr", "b.exr", "--spp", "4"}), "compare --help");
+}
+
+TEST(Options, CompareHelp) {
+  EXPECT_EQ(parse({"compare", "--help"}).command, Command::Help);
+  EXPECT_EQ(parse({"compare", "a.exr", "--alpha", "zero", "-h"}).command, Command::Help);
+  const std::string help = helpText();
+  for (const char* needle : {"mixtrace compare A.exr B.exr", "--alpha", "--json", "--max-fail-fraction",
+                             "Exit status: 0 the images agree, 1 they differ, 2 error", "relMSE"})
+    EXPECT_NE(help.find(needle), std::string::npos) << "help text lacks: " << needle;
+  EXPECT_EQ(kCompareExitAgree, 0);
+  EXPECT_EQ(kCompareExitDiffer, 1);
+  EXPECT_EQ(kCompareExitError, 2);
+}
+
+TEST(Options, CompareNeedsExactlyTwoImages) {
+  expectOneLineMentioning(errorOf({"compare"}), "two images");
+  expectOneLineMentioning(errorOf({"compare", "a.exr"}), "two images");
+  const std::string three = errorOf({"compare", "a.exr", "b.exr", "c.exr"});
+  expectOneLineMentioning(three, "c.exr");
+  expectOneLineMentioning(three, "two");
+  expectOneLineMentioning(errorOf({"compare", "a.exr", ""}), "empty");
+}
+
+TEST(Options, CompareRejectsBadValues) {
+  for (const char* alpha : {"0", "1", "-0.1", "1.5", "abc", "0.01x", "nan", "inf"})
+    expectOneLineMentioning(errorOf({"compare", "a.exr", "b.exr", "--alpha", alpha}), "--alpha");
+  for (const char* fraction : {"-1", "1.01", "half"})
+    expectOneLineMentioning(errorOf({"compare", "a.exr", "b.exr", "--max-fail-fraction", fraction}),
+                            "--max-fail-fraction");
+  EXPECT_DOUBLE_EQ(parse({"compare", "a", "b", "--max-fail-fraction=0"}).compare.maxFailFraction, 0.0);
+  expectOneLineMentioning(errorOf({"compare", "a.exr", "b.exr", "--json"}), "--json");
+  expectOneLineMentioning(errorOf({"compare", "a.exr", "b.exr", "--quiet=1"}), "--quiet");
 }
 
 }  // namespace
