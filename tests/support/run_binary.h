@@ -16,6 +16,7 @@ namespace mixtrace::testing {
 
 struct RunResult {
   int exitCode = -1;
+  std::string stdoutText;
   std::string stderrText;
   std::vector<std::string> stderrLines() const {
     std::vector<std::string> lines;
@@ -33,17 +34,23 @@ inline std::filesystem::path scratchDir(const std::string& name) {
 }
 
 // `args` is appended to the binary path verbatim (shell syntax); `env` is prefixed (e.g. "VAR=x").
+inline std::string readText(const std::filesystem::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
 inline RunResult runMixtrace(const std::string& args, const std::string& env = "", int timeoutSeconds = 120) {
-  auto errFile = scratchDir("run") / "stderr.txt";
-  std::string cmd = env + " timeout " + std::to_string(timeoutSeconds) + " " + MIXTRACE_BINARY + " " + args +
-                    " > /dev/null 2> " + errFile.string();
+  auto dir = scratchDir("run");
+  auto outFile = dir / "stdout.txt", errFile = dir / "stderr.txt";
+  std::string cmd = env + " timeout " + std::to_string(timeoutSeconds) + " " + MIXTRACE_BINARY + " " + args + " > " +
+                    outFile.string() + " 2> " + errFile.string();
   int status = std::system(cmd.c_str());
   RunResult r;
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream f(errFile);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  r.stderrText = ss.str();
+  r.stdoutText = readText(outFile);
+  r.stderrText = readText(errFile);
   return r;
 }
 
