@@ -60,7 +60,7 @@ TEST_P(BackendAgreement, SameSeedTracesTheSamePaths) {
 
 TEST_P(BackendAgreement, IndependentImagesAgreeStatistically) {
   fs::path dir = scratchDir("backends-stat");
-  const std::string size = byTestLevel<std::string>("--width 48 --height 36 --spp 128", "--width 160 --height 120 --spp 1024");
+  const std::string size = byTestLevel<std::string>("--width 48 --height 36 --spp 128", "--width 128 --height 96 --spp 512");
   Image gpuVar, cpuVar;
   Image gpu = renderWith(GetParam(), "vulkan", size + " --variance --seed 11", dir / "gpu.exr", &gpuVar);
   Image cpu = renderWith(GetParam(), "cpu", size + " --variance --seed 12", dir / "cpu.exr", &cpuVar);

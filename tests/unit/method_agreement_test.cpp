@@ -24,7 +24,7 @@ TEST_P(MethodAgreement, UniformAndPowerSelectionAgree) {
   const char* methods[2] = {"pt-uniform", "pt-power"};
   for (int m = 0; m < 2; ++m) {
     fs::path out = dir / (std::string(methods[m]) + ".exr");
-    const std::string size = byTestLevel<std::string>("--width 48 --height 36 --spp 256", "--width 160 --height 120 --spp 2048");
+    const std::string size = byTestLevel<std::string>("--width 48 --height 36 --spp 256", "--width 128 --height 96 --spp 1024");
     RunResult r = runMixtrace("render " + GetParam() + " " + size + " --seed " + std::to_string(m + 1) +
                               " --method " + methods[m] + " --variance -q --no-png --out " + out.string(), "", 3000);
     ASSERT_EQ(r.exitCode, 0) << r.stderrText;
