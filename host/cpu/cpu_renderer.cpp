@@ -64,7 +64,10 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
       vec3 contribution = throughput * f * ls.radiance * (weight / ls.pdf);
       if (!isBlack(contribution)) {
         ++counters.shadowRays;
-        if (!traceAny(next, ls.direction, shadowRayLength(next, ls))) radiance += contribution;
+        vec3 shadowDirection;
+        float shadowLength;
+        shadowRay(next, ls, shadowDirection, shadowLength);
+        if (!traceAny(next, shadowDirection, shadowLength)) radiance += contribution;
       }
     }
 

@@ -154,14 +154,22 @@ SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter
   return false;
 }
 
-// The extent of the shadow ray from `origin` (already offset off its surface) towards the light
-// sample: up to the light point, itself offset towards the origin so the emitter never occludes
-// its own sample; unbounded for directional lights.
-SHARED_FN float shadowRayLength(vec3 origin, LightSample s) {
-  if (s.distance >= kFloatMax) return kFloatMax;
+// The shadow ray from `origin` (already offset off its surface) to the light sample. It aims at
+// the light point offset towards the origin, and its direction is taken from the two offset
+// points themselves: aimed along the un-offset direction instead, a ray that leaves at a
+// grazing angle drifts sideways by the origin's offset and reaches the light's own surface
+// before tMax, which would count the light as occluding itself. Unbounded for directional lights.
+SHARED_FN void shadowRay(vec3 origin, LightSample s, OUT(vec3) direction, OUT(float) tMax) {
+  if (s.distance >= kFloatMax) {
+    direction = s.direction;
+    tMax = kFloatMax;
+    return;
+  }
   vec3 target = s.isDelta ? s.position
                           : offsetRayOrigin(s.position, dot(s.normal, s.direction) < 0.0f ? s.normal : -s.normal);
-  return dot(target - origin, s.direction);
+  vec3 toTarget = target - origin;
+  tMax = length(toTarget);
+  direction = tMax > 0.0f ? toTarget / tMax : s.direction;
 }
 
 SHARED_END_WITH_BUFFERS

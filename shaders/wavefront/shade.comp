@@ -57,11 +57,10 @@ void main() {
     if (contribution.x > 0.0 || contribution.y > 0.0 || contribution.z > 0.0) {
       ShadowRay s;
       s.origin = origin;
-      s.direction = ls.direction;
       s.path = path;
       s.contribution = contribution;
       s.pad = 0.0;
-      s.tMax = shadowRayLength(origin, ls);
+      shadowRay(origin, ls, s.direction, s.tMax);
       uint slot = atomicAdd(queues.shadowCount, 1u);
       shadowQueue[slot] = s;
     }
