@@ -28,7 +28,12 @@
 #define BINDING_QUEUE_STATE 18
 // Film
 #define BINDING_FILM 19           // per pixel: running mean and sum of squared deviations (vec3 each)
-#define BINDING_COUNT 20
+// Controlled mixture sampling (shaders/shared/cms_layouts.h)
+#define BINDING_CELL_STATS 20     // float[cells * cellStatsStride(L)]
+#define BINDING_CELL_SAMPLES 21   // uint[cells]: samples per cell
+#define BINDING_CELL_SOLUTION 22  // float[cells * cellSolutionStride(L)]
+#define BINDING_CLUSTER_DEFAULTS 23  // float[L]: default selection pmf over clusters
+#define BINDING_COUNT 24
 
 // Specialization constants: the scene's feature set (host/scene/features.h fills them).
 #define SPEC_HAS_TEXTURES 0

@@ -1,0 +1,57 @@
+// Controlled mixture sampling (../shared/cms.md): the per-cell statistics the shade pass adds to,
+// the coefficients the solve pass writes, and the light clusters, as flat float/uint arrays with
+// index functions (their size depends on the cluster count L, so they are not fixed structs).
+// Shared by the GPU passes, the CPU reference and the tests.
+#ifndef MIXTRACE_SHARED_CMS_LAYOUTS_H
+#define MIXTRACE_SHARED_CMS_LAYOUTS_H
+#include "shared/dialect.h"
+SHARED_BEGIN
+
+// Capacity of the per-cell systems; --max-clusters chooses L <= kMaxClusters.
+const uint kMaxClusters = 32u;
+
+// Statistics of one cell (cms.md §4), floats, L clusters plus the BSDF technique B. A is the
+// arrowhead matrix over (p_1 .. p_L, p_B): clusters are disjoint, so only A_kk, A_kB, A_BB exist.
+//   [0, L)            A_kk
+//   [L, 2L)           A_kB
+//   2L                A_BB
+//   [2L+1, 5L+1)      b_k, RGB (b_k.r at 2L+1+3k)
+//   [5L+1, 5L+4)      b_B, RGB
+// The number of samples a cell received is kept apart, as a uint (cellSampleCount buffer), so it
+// stays exact past 2^24.
+SHARED_FN uint cellStatsStride(uint L) { return 5u * L + 4u; }
+SHARED_FN uint statsAkk(uint L, uint k) { return k; }
+SHARED_FN uint statsAkB(uint L, uint k) { return L + k; }
+SHARED_FN uint statsABB(uint L) { return 2u * L; }
+SHARED_FN uint statsBk(uint L, uint k, uint channel) { return 2u * L + 1u + 3u * k + channel; }
+SHARED_FN uint statsBB(uint L, uint channel) { return 5u * L + 1u + channel; }
+
+// Solved coefficients of one cell, floats (written by the solve pass, read by the next iteration):
+//   [0, 3L)           alpha_k, RGB
+//   [3L, 3L+3)        alpha_B, RGB
+//   [3L+3, 4L+3)      selection pmf c_k over clusters (sums to 1)
+//   4L+3              1 when alpha is valid for this cell (else the cell uses no control variate)
+SHARED_FN uint cellSolutionStride(uint L) { return 4u * L + 4u; }
+SHARED_FN uint solutionAlpha(uint L, uint k, uint channel) { return 3u * k + channel; }
+SHARED_FN uint solutionAlphaB(uint L, uint channel) { return 3u * L + channel; }
+SHARED_FN uint solutionSelect(uint L, uint k) { return 3u * L + 3u + k; }
+SHARED_FN uint solutionValid(uint L) { return 4u * L + 3u; }
+
+// Solve pass flags (SolveParams.flags).
+const uint kSolveLearnSelection = 1u;   // write learned c_k (methods learned, cms); else the defaults
+const uint kSolveControlVariate = 2u;   // write alpha (methods cv, cms); else alpha = 0, invalid
+
+// Push constants of the solve pass (<= 48 bytes: the pipeline layout's push-constant range).
+struct SolveParams {
+  uint cellCount;
+  uint clusterCount;     // L
+  uint minSamples;       // below this many samples a cell keeps no control variate
+  uint flags;            // kSolve*
+  float ridge;           // Tikhonov term, relative to the mean of the scaled diagonal
+  float defensive;       // epsilon of cms.md §7: weight of the default selection in c_k
+  float pad0;
+  float pad1;
+};
+
+SHARED_END
+#endif
