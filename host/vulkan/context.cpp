@@ -63,6 +63,7 @@ bool supportsRequiredFeatures(VkPhysicalDevice pd, std::string* missing) {
   VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
   vkGetPhysicalDeviceFeatures2(pd, &f);
   if (!f12.scalarBlockLayout) { *missing = "scalarBlockLayout"; return false; }
+  if (!f.features.shaderInt64 || !f12.shaderBufferInt64Atomics) { *missing = "64-bit integer atomics"; return false; }
   return true;
 }
 
@@ -130,7 +131,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   }
   if (chosen < 0) {
     if (!options.device.empty()) throw Error("no usable Vulkan device matches --device " + options.device + " (devices: " + names + ")");
-    throw Error("no Vulkan device supports what mixtrace needs (Vulkan 1.2, compute, scalar block layout; devices: " + names + ")");
+    throw Error("no Vulkan device supports what mixtrace needs (Vulkan 1.2, compute, scalar block layout, 64-bit atomics; devices: " + names + ")");
   }
   physical_ = devices[size_t(chosen)];
   vkGetPhysicalDeviceProperties(physical_, &properties_);
@@ -145,9 +146,12 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   qci.queueFamilyIndex = queueFamily_;
   qci.queueCount = 1;
   qci.pQueuePriorities = &priority;
+  // Scalar block layout: one struct layout for C++ and GLSL. 64-bit atomics: the CMS cell table.
   VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   f12.scalarBlockLayout = VK_TRUE;
+  f12.shaderBufferInt64Atomics = VK_TRUE;
   VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+  f.features.shaderInt64 = VK_TRUE;
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   dci.pNext = &f;
   dci.queueCreateInfoCount = 1;

@@ -33,7 +33,8 @@
 #define BINDING_CELL_SAMPLES 21   // uint[cells]: samples per cell
 #define BINDING_CELL_SOLUTION 22  // float[cells * cellSolutionStride(L)]
 #define BINDING_CLUSTER_DEFAULTS 23  // float[L]: default selection pmf over clusters
-#define BINDING_COUNT 24
+#define BINDING_CELL_KEYS 24      // uint64[tableSize]: hashed cell keys, 0 = empty (cms_cells.h)
+#define BINDING_COUNT 25
 
 // Specialization constants: the scene's feature set (host/scene/features.h fills them).
 #define SPEC_HAS_TEXTURES 0
