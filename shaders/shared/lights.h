@@ -74,9 +74,10 @@ SHARED_FN vec3 emittedRadiance(uint tri, float u, float v, vec3 towardsViewer) {
   return le;
 }
 
-// Solid-angle pdf with which sampleLight() produces the point `lightPoint` on emitting triangle
-// `tri` as seen from `from`: selection * triangle pmf / area, converted by d^2 / |cos|.
-SHARED_FN float areaLightPdf(uint tri, vec3 from, vec3 lightPoint) {
+// Solid-angle pdf with which sampleLightPoint() produces the point `lightPoint` on emitting
+// triangle `tri` as seen from `from`, given its light was chosen: triangle pmf / area, converted
+// by d^2 / |cos|. 0 for a triangle that does not emit.
+SHARED_FN float areaLightPointPdf(uint tri, vec3 from, vec3 lightPoint) {
   int e = TRIANGLE_SHADING(tri).emitter;
   if (e < 0) return 0.0f;
   EmitterGpu em = EMITTER(uint(e));
@@ -86,7 +87,16 @@ SHARED_FN float areaLightPdf(uint tri, vec3 from, vec3 lightPoint) {
   vec3 n = cross(g.e1, g.e2);   // length = 2 * area
   float cosTimesTwoArea = abs(dot(n, d)) * inversesqrt(dist2);
   if (!(cosTimesTwoArea > 0.0f)) return 0.0f;
-  return lightSelectPmf(em.light) * em.pmf * 2.0f * dist2 / cosTimesTwoArea;
+  return em.pmf * 2.0f * dist2 / cosTimesTwoArea;
+}
+
+// The light an emitting triangle belongs to (only for triangles with an emitter).
+SHARED_FN uint lightOfTriangle(uint tri) { return EMITTER(uint(TRIANGLE_SHADING(tri).emitter)).light; }
+
+// Solid-angle pdf with which sampleLight() produces `lightPoint` on `tri`: selection included.
+SHARED_FN float areaLightPdf(uint tri, vec3 from, vec3 lightPoint) {
+  float pointPdf = areaLightPointPdf(tri, from, lightPoint);
+  return pointPdf > 0.0f ? lightSelectPmf(lightOfTriangle(tri)) * pointPdf : 0.0f;
 }
 
 // glTF's recommended spot falloff: smooth between the outer and inner cone, squared.
@@ -96,13 +106,13 @@ SHARED_FN float spotFalloff(LightGpu l, vec3 lightToPoint) {
   return a * a;
 }
 
-// One light sample for the shading point p. Returns false when the sample carries nothing
-// (back face of a one-sided emitter, outside a spot cone, degenerate); it still counts as drawn.
-SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter, vec2 uPoint,
-                           OUT(LightSample) s) {
-  s.light = selectLight(uLight, lightCount);
-  LightGpu l = LIGHT(s.light);
-  float selectPmf = lightSelectPmf(s.light);
+// A point on light `light` for the shading point p; s.pdf is the pdf given the light was chosen
+// (solid angle for area lights, 1 for delta lights). Returns false when the sample carries
+// nothing (back face of a one-sided emitter, outside a spot cone, degenerate); it still counts
+// as drawn.
+SHARED_FN bool sampleLightPoint(vec3 p, uint light, float uEmitter, vec2 uPoint, OUT(LightSample) s) {
+  s.light = light;
+  LightGpu l = LIGHT(light);
   s.triangle = kNoHit;
   s.isDelta = l.kind != kLightArea;
   s.normal = vec3(0.0f);
@@ -129,12 +139,12 @@ SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter
     s.normal = n / twoArea;
     float cosLight = abs(dot(s.normal, s.direction));
     if (!(cosLight > 0.0f)) return false;
-    s.pdf = selectPmf * em.pmf * 2.0f * dist2 / (twoArea * cosLight);
+    s.pdf = em.pmf * 2.0f * dist2 / (twoArea * cosLight);
     s.radiance = emittedRadiance(em.triangle, bary.y, bary.z, -d);
     return s.radiance.x > 0.0f || s.radiance.y > 0.0f || s.radiance.z > 0.0f;
   }
   if (HAS_PUNCTUAL_LIGHTS) {
-    s.pdf = selectPmf;
+    s.pdf = 1.0f;
     if (l.kind == kLightDirectional) {
       s.direction = -l.direction;
       s.distance = kFloatMax;
@@ -152,6 +162,16 @@ SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter
     return s.radiance.x > 0.0f || s.radiance.y > 0.0f || s.radiance.z > 0.0f;
   }
   return false;
+}
+
+// One light sample for the shading point p, the light chosen by the method's selection
+// distribution; s.pdf includes the selection probability.
+SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter, vec2 uPoint,
+                           OUT(LightSample) s) {
+  uint light = selectLight(uLight, lightCount);
+  bool carries = sampleLightPoint(p, light, uEmitter, uPoint, s);
+  s.pdf *= lightSelectPmf(light);
+  return carries;
 }
 
 // The shadow ray from `origin` (already offset off its surface) to the light sample. It aims at
