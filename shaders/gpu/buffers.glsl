@@ -4,6 +4,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/bindings.h"
+#include "shared/cms_layouts.h"
 #include "shared/layouts.h"
 
 layout(constant_id = SPEC_HAS_TEXTURES) const bool HAS_TEXTURES = true;
@@ -12,7 +13,12 @@ layout(constant_id = SPEC_HAS_PUNCTUAL_LIGHTS) const bool HAS_PUNCTUAL_LIGHTS = 
 layout(constant_id = SPEC_HAS_METALS) const bool HAS_METALS = true;
 layout(constant_id = SPEC_SINGLE_LIGHT) const bool SINGLE_LIGHT = false;
 
-layout(push_constant, scalar) uniform Push { PassConstants pc; };
+// Push constants, as `pc`: PassConstants unless the pass defines PUSH_CONSTANT_TYPE before
+// including this file (the CMS solve pass reads SolveParams).
+#ifndef PUSH_CONSTANT_TYPE
+#define PUSH_CONSTANT_TYPE PassConstants
+#endif
+layout(push_constant, scalar) uniform Push { PUSH_CONSTANT_TYPE pc; };
 
 layout(scalar, binding = BINDING_CAMERA) readonly buffer CameraBuf { CameraGpu camera; };
 layout(scalar, binding = BINDING_BVH_NODES) readonly buffer NodeBuf { BvhNode bvhNodes[]; };
@@ -37,6 +43,13 @@ layout(scalar, binding = BINDING_SHADOW_QUEUE) buffer ShadowQueueBuf { ShadowRay
 layout(scalar, binding = BINDING_QUEUE_STATE) buffer QueueStateBuf { QueueState queues; };
 
 layout(scalar, binding = BINDING_FILM) buffer FilmBuf { vec3 film[]; };  // [2 * pixel] mean, [2 * pixel + 1] sum of squared deviations
+
+// Controlled mixture sampling: per-cell statistics and solutions, flat arrays indexed by the
+// functions of shared/cms_layouts.h.
+layout(scalar, binding = BINDING_CELL_STATS) buffer CellStatsBuf { float cellStats[]; };
+layout(scalar, binding = BINDING_CELL_SAMPLES) buffer CellSamplesBuf { uint cellSamples[]; };
+layout(scalar, binding = BINDING_CELL_SOLUTION) buffer CellSolutionBuf { float cellSolution[]; };
+layout(scalar, binding = BINDING_CLUSTER_DEFAULTS) readonly buffer ClusterDefaultsBuf { float clusterDefaults[]; };
 
 #define BVH_NODE(i) bvhNodes[i]
 #define BVH_TRIANGLE(i) triangles[i]

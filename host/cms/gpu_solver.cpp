@@ -1,0 +1,40 @@
+#include "cms/gpu_solver.h"
+
+#include <algorithm>
+#include <string>
+
+#include "shared/layouts.h"
+#include "util/error.h"
+#include "vulkan/context.h"
+
+namespace mixtrace {
+
+static_assert(sizeof(shared::SolveParams) <= sizeof(shared::PassConstants),
+              "SolveParams must fit the shared pipeline layout's push-constant range");
+
+CellSolver::CellSolver(VulkanContext& ctx, DescriptorSet& set)
+    : ctx_(ctx), set_(set), pipeline_(ctx, "solve", set.pipelineLayout(), {}) {}
+
+void CellSolver::record(VkCommandBuffer cmd, const shared::SolveParams& params) const {
+  if (params.clusterCount > shared::kMaxClusters)
+    throw Error("CMS solve: " + std::to_string(params.clusterCount) + " light clusters, at most " +
+                std::to_string(shared::kMaxClusters) + " are supported");
+  if (params.cellCount == 0) return;
+  // One invocation per cell. Workgroups beyond the device's limit in x wrap into y (the shader
+  // computes the cell from both), so millions of cells fit.
+  uint32_t groups = (params.cellCount + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize;
+  uint32_t maxX = ctx_.properties().limits.maxComputeWorkGroupCount[0];
+  uint32_t groupsX = std::min(groups, maxX);
+  uint32_t groupsY = (groups + groupsX - 1) / groupsX;
+  if (groupsY > ctx_.properties().limits.maxComputeWorkGroupCount[1])
+    throw Error("CMS solve: " + std::to_string(params.cellCount) + " cells exceed the device's dispatch limits");
+
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
+  VkDescriptorSet s = set_.set();
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set_.pipelineLayout(), 0, 1, &s, 0, nullptr);
+  vkCmdPushConstants(cmd, set_.pipelineLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(params), &params);
+  vkCmdDispatch(cmd, groupsX, groupsY, 1);
+  computeBarrier(cmd);
+}
+
+}  // namespace mixtrace

@@ -1,0 +1,152 @@
+#include "cms/reference_solve.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+#include "shared/cms_solve.h"   // the policy constants only (no CELL_STATS: no buffer code)
+
+namespace mixtrace {
+
+namespace {
+
+using shared::SolveParams;
+
+bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+
+bool usableDiagonal(float a) { return std::isfinite(a) && a >= shared::kSolveMinDiagonal; }
+
+// The output is float: a coefficient beyond float's range cannot be written, so it counts as
+// non-finite, as it does on the GPU.
+bool fitsFloat(const glm::dvec3& v) {
+  for (int c = 0; c < 3; ++c)
+    if (!(std::abs(v[c]) <= double(FLT_MAX))) return false;
+  return true;
+}
+
+double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+// Entry (t, u) of the full arrowhead matrix over techniques 0..L-1 (clusters) and L (B).
+double matrixEntry(const float* stats, uint32_t L, uint32_t t, uint32_t u) {
+  if (t == u) return t == L ? stats[shared::statsABB(L)] : stats[shared::statsAkk(L, t)];
+  if (t == L) return stats[shared::statsAkB(L, u)];
+  if (u == L) return stats[shared::statsAkB(L, t)];
+  return 0.0;   // two clusters: disjoint supports
+}
+
+glm::dvec3 rhs(const float* stats, uint32_t L, uint32_t t) {
+  const float* b = t == L ? &stats[shared::statsBB(L, 0)] : &stats[shared::statsBk(L, t, 0)];
+  return glm::dvec3(b[0], b[1], b[2]);
+}
+
+// Solves the Jacobi-scaled, ridge-regularised system over `techniques` by dense Cholesky. A pivot
+// at or below the floor drops its technique and starts over. Returns alpha per technique of the
+// final set (which it shrinks in place).
+std::vector<glm::dvec3> solveSystem(const float* stats, uint32_t L, double ridge, std::vector<uint32_t>& techniques) {
+  const double diag = 1.0 + ridge;
+  const double floor = double(shared::kSolvePivotFloor) * diag;
+  for (;;) {
+    size_t m = techniques.size();
+    std::vector<double> scale(m);
+    for (size_t i = 0; i < m; ++i) scale[i] = 1.0 / std::sqrt(matrixEntry(stats, L, techniques[i], techniques[i]));
+    std::vector<double> G(m * m, 0.0);   // lower Cholesky factor, row-major
+    size_t failed = m;
+    for (size_t j = 0; j < m && failed == m; ++j) {
+      for (size_t i = j; i < m; ++i) {
+        double a = i == j ? diag : matrixEntry(stats, L, techniques[i], techniques[j]) * scale[i] * scale[j];
+        for (size_t l = 0; l < j; ++l) a -= G[i * m + l] * G[j * m + l];
+        if (i == j) {
+          if (!(a > floor)) { failed = j; break; }
+          G[j * m + j] = std::sqrt(a);
+        } else {
+          G[i * m + j] = a / G[j * m + j];
+        }
+      }
+    }
+    if (failed != m) {
+      techniques.erase(techniques.begin() + failed);
+      continue;
+    }
+    std::vector<glm::dvec3> z(m);
+    for (size_t i = 0; i < m; ++i) {
+      glm::dvec3 v = rhs(stats, L, techniques[i]) * scale[i];
+      for (size_t l = 0; l < i; ++l) v -= G[i * m + l] * z[l];
+      z[i] = v / G[i * m + i];
+    }
+    std::vector<glm::dvec3> y(m);
+    for (size_t i = m; i-- > 0;) {
+      glm::dvec3 v = z[i];
+      for (size_t l = i + 1; l < m; ++l) v -= G[l * m + i] * y[l];
+      y[i] = v / G[i * m + i];
+    }
+    for (size_t i = 0; i < m; ++i) y[i] *= scale[i];
+    return y;
+  }
+}
+
+}  // namespace
+
+CellSolution solveCellReference(const float* stats, uint32_t samples, uint32_t L, const SolveParams& params,
+                                const float* defaults) {
+  CellSolution out;
+  out.alpha.assign(L, glm::dvec3(0.0));
+  out.select.assign(L, 0.0);
+  out.inSystem.assign(L + 1, false);
+
+  // Techniques with usable samples: clusters first, B last (its pivot is the Schur complement).
+  std::vector<uint32_t> techniques;
+  for (uint32_t k = 0; k < L; ++k)
+    if (usableDiagonal(stats[shared::statsAkk(L, k)]) && std::isfinite(stats[shared::statsAkB(L, k)]) &&
+        finite3(&stats[shared::statsBk(L, k, 0)]))
+      techniques.push_back(k);
+  if (usableDiagonal(stats[shared::statsABB(L)]) && finite3(&stats[shared::statsBB(L, 0)])) techniques.push_back(L);
+
+  double ridge = std::isfinite(params.ridge) && params.ridge > 0.0f ? double(params.ridge) : 0.0;
+  std::vector<glm::dvec3> solved = solveSystem(stats, L, ridge, techniques);
+
+  std::vector<glm::dvec3> alpha(L, glm::dvec3(0.0));
+  glm::dvec3 alphaB(0.0);
+  bool allFinite = true;
+  for (size_t i = 0; i < techniques.size(); ++i) {
+    out.inSystem[techniques[i]] = true;
+    (techniques[i] == L ? alphaB : alpha[techniques[i]]) = solved[i];
+    allFinite = allFinite && fitsFloat(solved[i]);
+  }
+  out.solved = samples >= params.minSamples && !techniques.empty() && allFinite;
+  out.valid = out.solved && (params.flags & shared::kSolveControlVariate) != 0;
+  if (out.valid) {
+    out.alpha = alpha;
+    out.alphaB = alphaB;
+  }
+
+  // Selection: defaults sanitised and normalised, learned share where the solve allows it.
+  std::vector<double> d(L, 0.0);
+  double defaultSum = 0.0;
+  for (uint32_t k = 0; k < L; ++k) {
+    if (std::isfinite(defaults[k]) && defaults[k] > 0.0f) d[k] = defaults[k];
+    defaultSum += d[k];
+  }
+  for (uint32_t k = 0; k < L; ++k) d[k] = defaultSum > 0.0 ? d[k] / defaultSum : 1.0 / L;
+
+  std::vector<double> weight(L, 0.0);
+  double weightSum = 0.0;
+  for (uint32_t k = 0; k < L; ++k) {
+    weight[k] = std::max(luminance(alpha[k]), 0.0);
+    weightSum += weight[k];
+  }
+  bool learn = out.solved && (params.flags & shared::kSolveLearnSelection) != 0 && weightSum > 0.0 &&
+               std::isfinite(weightSum);
+  double eps = std::isfinite(params.defensive) ? std::clamp(double(params.defensive), double(shared::kSolveMinDefensive), 1.0)
+                                               : 1.0;
+  double selectSum = 0.0;
+  for (uint32_t k = 0; k < L; ++k) {
+    double c = learn ? (1.0 - eps) * weight[k] / weightSum + eps * d[k] : d[k];
+    if (d[k] > 0.0) c = std::max(c, 1e-30);
+    out.select[k] = c;
+    selectSum += c;
+  }
+  for (double& c : out.select) c /= selectSum;
+  return out;
+}
+
+}  // namespace mixtrace

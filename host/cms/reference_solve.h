@@ -1,0 +1,28 @@
+#pragma once
+// The per-cell CMS solve in double precision, written independently of the GPU's float version
+// (shared/cms_solve.h, whose header comment states the rules both follow): a dense Cholesky of the
+// system restricted to the techniques with usable samples, not the arrowhead shortcut. Tests hold
+// the solve pass to it; the CPU renderer may use it as its solve.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "shared/cms_layouts.h"
+
+namespace mixtrace {
+
+struct CellSolution {
+  std::vector<glm::dvec3> alpha;   // per cluster; 0 when unsolved or without kSolveControlVariate
+  glm::dvec3 alphaB{0.0};
+  std::vector<double> select;      // selection pmf over the clusters (sums to 1)
+  bool valid = false;              // the cell uses its control variate
+  bool solved = false;             // the system was solved (alpha finite, enough samples), whatever the flags
+  std::vector<bool> inSystem;      // per technique, clusters then B: took part in the final system
+};
+
+// stats: cellStatsStride(L) floats of one cell; defaults: L floats (the default selection pmf).
+CellSolution solveCellReference(const float* stats, uint32_t samples, uint32_t L, const shared::SolveParams& params,
+                                const float* defaults);
+
+}  // namespace mixtrace

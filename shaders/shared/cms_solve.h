@@ -1,0 +1,192 @@
+// The per-cell solve of controlled mixture sampling (../shared/cms.md §4, §6, §7), in float, as
+// the solve pass runs it (shaders/cms/solve.comp, one invocation per cell). The double-precision
+// reference (host/cms/reference_solve.cpp) implements the same rules independently and shares
+// only the policy constants below.
+//
+// Rules, per cell (each keeps the estimator unbiased: any alpha is, cms.md §6):
+//   - A technique whose diagonal entry is not a positive normal float, or whose row holds a NaN or
+//     Inf (A_kk, A_kB, b_k for a cluster; A_BB, b_B for the BSDF technique), has no usable samples
+//     and is dropped from the system: its alpha is 0.
+//   - Jacobi scaling: with D = diag(A), solve (D^-1/2 A D^-1/2 + ridge I) y = D^-1/2 b and set
+//     alpha = D^-1/2 y. The scaled diagonal is 1, so the ridge is relative to its mean.
+//   - The arrowhead Cholesky factor is O(L): L_kk = sqrt(1 + ridge), L_Bk = A'_kB / L_kk,
+//     L_BB = sqrt(1 + ridge - sum_k L_Bk^2). A pivot L_BB^2 <= kSolvePivotFloor * (1 + ridge)
+//     (singular or nearly so: B is a combination of the clusters) drops B; the clusters then
+//     decouple. Factored once, solved for the three RGB right-hand sides.
+//   - The cell is solved when it has at least minSamples samples, at least one technique in the
+//     system and a finite alpha everywhere. Unsolved cells write alpha = 0, valid = 0.
+//   - With kSolveControlVariate the solved alpha is written and valid = 1; without it alpha = 0
+//     and valid = 0, but the solve still runs: its alpha feeds the learned selection ("learned"
+//     method, selection without a control variate).
+//   - Selection: with kSolveLearnSelection and a solved cell whose weights w_k = max(lum(alpha_k), 0)
+//     have a positive finite sum, c_k = (1 - eps) w_k / sum w + eps d_k; otherwise c_k = d_k. The
+//     defaults d are sanitised (non-finite or negative entries count as 0) and normalised (uniform
+//     when they sum to 0); eps is clamped to [kSolveMinDefensive, 1] so that every cluster with
+//     d_k > 0 keeps c_k > 0 (a light that can never be selected would bias the estimate); c is
+//     normalised to sum 1.
+// Every output is finite for any input.
+#ifndef MIXTRACE_SHARED_CMS_SOLVE_H
+#define MIXTRACE_SHARED_CMS_SOLVE_H
+#include "shared/cms_layouts.h"
+#include "shared/constants.h"
+#include "shared/dialect.h"
+#include "shared/sampling.h"
+SHARED_BEGIN
+
+// Smallest diagonal entry a technique needs to take part: the smallest normal float. Below it
+// 1/sqrt overflows, and GPUs may flush the value to 0 anyway.
+const float kSolveMinDiagonal = 1.17549435e-38f;
+// A Schur pivot (scaled, so between 0 and 1 + ridge for a consistent system) at or below this
+// fraction of 1 + ridge means B is (numerically) a combination of the clusters: B is dropped.
+// Float cancellation in 1 + ridge - sum L_Bk^2 is ~1e-6 for L = 32, so smaller pivots are noise.
+const float kSolvePivotFloor = 1e-5f;
+// Lower bound of the defensive fraction: keeps c_k > 0 wherever the default is.
+const float kSolveMinDefensive = 1e-3f;
+
+SHARED_FN bool cmsIsFinite(float x) {
+#ifdef __cplusplus
+  return std::isfinite(x);
+#else
+  return !isnan(x) && !isinf(x);
+#endif
+}
+
+SHARED_FN bool cmsIsFinite3(vec3 v) { return cmsIsFinite(v.x) && cmsIsFinite(v.y) && cmsIsFinite(v.z); }
+
+// A diagonal entry of A that lets its technique take part in the system.
+SHARED_FN bool cmsUsableDiagonal(float a) { return cmsIsFinite(a) && a >= kSolveMinDiagonal; }
+
+SHARED_END
+
+// The solve itself reads and writes the cell buffers through accessors the includer defines:
+// CELL_STATS(i), CELL_SAMPLES(cell), CELL_SOLUTION(i) (assignable), CLUSTER_DEFAULT(k).
+#ifdef CELL_STATS
+SHARED_BEGIN_WITH_BUFFERS
+
+SHARED_FN vec3 cmsReadStats3(uint i) {
+  vec3 v;
+  v.x = CELL_STATS(i);
+  v.y = CELL_STATS(i + 1u);
+  v.z = CELL_STATS(i + 2u);
+  return v;
+}
+
+SHARED_FN void cmsWriteSolution3(uint i, vec3 v) {
+  CELL_SOLUTION(i) = v.x;
+  CELL_SOLUTION(i + 1u) = v.y;
+  CELL_SOLUTION(i + 2u) = v.z;
+}
+
+// Row k of the scaled system and its forward substitution: sk = A_kk^-1/2, lBk = L_Bk (0 when B is
+// not in the system, sB = 0), zk = L_kk^-1 b'_k. False when cluster k has no usable samples.
+SHARED_FN bool cmsClusterRow(uint stats, uint L, uint k, float sB, float lkk, OUT(float) sk, OUT(float) lBk,
+                             OUT(vec3) zk) {
+  float akk = CELL_STATS(stats + statsAkk(L, k));
+  float akB = CELL_STATS(stats + statsAkB(L, k));
+  vec3 bk = cmsReadStats3(stats + statsBk(L, k, 0u));
+  sk = 0.0f;
+  lBk = 0.0f;
+  zk = vec3(0.0f);
+  if (!cmsUsableDiagonal(akk) || !cmsIsFinite(akB) || !cmsIsFinite3(bk)) return false;
+  sk = 1.0f / sqrt(akk);
+  // sk * sB first: finite (both <= 2^63), and exactly 0 when B is out, so a huge A_kB cannot
+  // turn into Inf * 0.
+  lBk = akB * (sk * sB) / lkk;
+  zk = bk * (sk / lkk);
+  return true;
+}
+
+// Solves cell `cell` of the buffers (layouts in shared/cms_layouts.h) and writes its solution.
+SHARED_FN void solveCell(uint cell, SolveParams params) {
+  uint L = params.clusterCount;
+  uint stats = cell * cellStatsStride(L);
+  uint solution = cell * cellSolutionStride(L);
+  float ridge = (cmsIsFinite(params.ridge) && params.ridge > 0.0f) ? params.ridge : 0.0f;
+  float diag = 1.0f + ridge;   // every scaled diagonal entry, ridge included
+  float lkk = sqrt(diag);      // the Cholesky diagonal of every cluster row
+
+  // The BSDF technique, last row of the arrowhead.
+  float aBB = CELL_STATS(stats + statsABB(L));
+  vec3 bB = cmsReadStats3(stats + statsBB(L, 0u));
+  bool useB = cmsUsableDiagonal(aBB) && cmsIsFinite3(bB);
+  float sB = useB ? 1.0f / sqrt(aBB) : 0.0f;
+
+  // Forward pass: the Schur pivot of B and sum_k L_Bk z_k.
+  uint inSystem = 0u;
+  float sumLBk2 = 0.0f;
+  vec3 sumLBkZk = vec3(0.0f);
+  for (uint k = 0u; k < L; ++k) {
+    float sk;
+    float lBk;
+    vec3 zk;
+    if (!cmsClusterRow(stats, L, k, sB, lkk, sk, lBk, zk)) continue;
+    inSystem += 1u;
+    sumLBk2 += lBk * lBk;
+    sumLBkZk += lBk * zk;
+  }
+  float pivot = diag - sumLBk2;
+  if (useB && !(pivot > kSolvePivotFloor * diag)) {
+    useB = false;   // singular: B adds nothing the clusters cannot express
+    sB = 0.0f;
+  }
+  vec3 yB = vec3(0.0f);
+  if (useB) {
+    inSystem += 1u;
+    float lBB = sqrt(pivot);
+    vec3 zB = (bB * sB - sumLBkZk) / lBB;
+    yB = zB / lBB;
+  }
+  vec3 alphaB = yB * sB;
+
+  // Back substitution. Alpha and the selection weights go straight to the solution; the final
+  // pass below zeroes them when the cell turns out unsolved.
+  bool allFinite = cmsIsFinite3(alphaB);
+  float weightSum = 0.0f;
+  for (uint k = 0u; k < L; ++k) {
+    float sk;
+    float lBk;
+    vec3 zk;
+    vec3 alpha = vec3(0.0f);
+    if (cmsClusterRow(stats, L, k, sB, lkk, sk, lBk, zk)) alpha = (zk - lBk * yB) * (sk / lkk);
+    allFinite = allFinite && cmsIsFinite3(alpha);
+    float weight = max(luminance(alpha), 0.0f);
+    if (!cmsIsFinite(weight)) weight = 0.0f;
+    weightSum += weight;
+    cmsWriteSolution3(solution + solutionAlpha(L, k, 0u), alpha);
+    CELL_SOLUTION(solution + solutionSelect(L, k)) = weight;
+  }
+
+  bool solved = CELL_SAMPLES(cell) >= params.minSamples && inSystem > 0u && allFinite;
+  bool writeAlpha = solved && (params.flags & kSolveControlVariate) != 0u;
+  bool learn = solved && (params.flags & kSolveLearnSelection) != 0u && weightSum > 0.0f && cmsIsFinite(weightSum);
+
+  // The defaults, sanitised and normalised.
+  float defaultSum = 0.0f;
+  for (uint k = 0u; k < L; ++k) {
+    float d = CLUSTER_DEFAULT(k);
+    if (cmsIsFinite(d) && d > 0.0f) defaultSum += d;
+  }
+  bool uniformDefaults = !(defaultSum > 0.0f) || !cmsIsFinite(defaultSum);
+  float eps = cmsIsFinite(params.defensive) ? clamp(params.defensive, kSolveMinDefensive, 1.0f) : 1.0f;
+
+  float selectSum = 0.0f;
+  for (uint k = 0u; k < L; ++k) {
+    float d = CLUSTER_DEFAULT(k);
+    d = uniformDefaults ? 1.0f / float(L) : ((cmsIsFinite(d) && d > 0.0f) ? d / defaultSum : 0.0f);
+    float c = d;
+    if (learn) c = (1.0f - eps) * (CELL_SOLUTION(solution + solutionSelect(L, k)) / weightSum) + eps * d;
+    if (d > 0.0f) c = max(c, 1e-30f);   // eps * d can underflow for a tiny default
+    CELL_SOLUTION(solution + solutionSelect(L, k)) = c;
+    selectSum += c;
+    if (!writeAlpha) cmsWriteSolution3(solution + solutionAlpha(L, k, 0u), vec3(0.0f));
+  }
+  for (uint k = 0u; k < L; ++k) CELL_SOLUTION(solution + solutionSelect(L, k)) /= selectSum;
+
+  cmsWriteSolution3(solution + solutionAlphaB(L, 0u), writeAlpha ? alphaB : vec3(0.0f));
+  CELL_SOLUTION(solution + solutionValid(L)) = writeAlpha ? 1.0f : 0.0f;
+}
+
+SHARED_END_WITH_BUFFERS
+#endif  // CELL_STATS
+
+#endif
