@@ -13,11 +13,14 @@ namespace mixtrace {
 namespace {
 
 // Methods --method accepts. Add new estimators here (and a one-line summary below for --help).
-const std::vector<std::string> kMethods = {"pt-uniform", "pt-power"};
+const std::vector<std::string> kMethods = {"pt-uniform", "pt-power", "learned", "cv", "cms"};
 
 const std::map<std::string, std::string> kMethodSummaries = {
     {"pt-uniform", "MIS path tracer, light picked uniformly"},
     {"pt-power", "MIS path tracer, light picked by power"},
+    {"learned", "per-cell learned cluster selection, no control variate"},
+    {"cv", "control variate per cell, selection kept fixed"},
+    {"cms", "control variate and learned selection (Hua et al. 2023)"},
 };
 
 const std::vector<std::string> kBackends = {"vulkan", "cpu"};
@@ -128,6 +131,14 @@ const RenderOptionSpec kOptionSpecs[] = {
     {"--seed", nullptr, true,
      [](RenderOptions& o, const std::string& n, const std::string& v) {
        o.seed = static_cast<uint32_t>(parseInteger(n, v, 0, 0xffffffffLL, "an integer in 0..4294967295"));
+     }},
+    {"--max-clusters", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) {
+       o.maxClusters = static_cast<int>(parseInteger(n, v, 1, 32, "an integer in 1..32"));
+     }},
+    {"--cells", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) {
+       o.cells = static_cast<int>(parseInteger(n, v, 1, 4096, "an integer in 1..4096"));
      }},
     {"--stats", nullptr, true, [](RenderOptions& o, const std::string&, const std::string& v) { o.statsPath = v; }},
     {"--device", nullptr, true, [](RenderOptions& o, const std::string&, const std::string& v) { o.device = v; }},
@@ -331,6 +342,14 @@ std::string helpText() {
           "                       5 = up to four bounces\n"
           "  --seed S             random seed, 0..4294967295 (default: "
        << defaults.seed
+       << ")\n"
+          "  --max-clusters N     learned/cv/cms: light clusters, one technique each,\n"
+          "                       1..32 (default: "
+       << defaults.maxClusters
+       << ")\n"
+          "  --cells N            learned/cv/cms: cells along the scene's longest\n"
+          "                       axis, times 6 normal directions (default: "
+       << defaults.cells
        << ")\n"
           "  --method NAME        light transport method (default: "
        << defaults.method << "):\n";

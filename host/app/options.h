@@ -34,6 +34,8 @@ struct RenderOptions {
   bool validation = false;       // --validation: Vulkan validation layer
   bool generalPipelines = false; // --general-pipelines: no specialisation on scene features
   bool variance = false;         // --variance: also write per-pixel variance of the mean
+  int maxClusters = 16;          // --max-clusters: CMS light clusters (techniques), 1..32
+  int cells = 16;                // --cells: CMS cells along the longest scene axis
 };
 
 // `mixtrace compare`: a statistical test of whether two renders (written with --variance) estimate

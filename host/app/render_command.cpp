@@ -10,6 +10,7 @@
 #include "output/exr_io.h"
 #include "output/png_preview.h"
 #include "output/render_stats.h"
+#include "cms/cms_setup.h"
 #include "cpu/cpu_renderer.h"
 #include "render/wavefront_renderer.h"
 #include "scene/gltf_loader.h"
@@ -27,7 +28,9 @@ double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(
 
 
 LightSelection selectionFor(const std::string& method) {
-  return method == "pt-uniform" ? LightSelection::Uniform : LightSelection::Power;
+  if (method == "pt-uniform") return LightSelection::Uniform;
+  if (method == "pt-power") return LightSelection::Power;
+  return cmsMethodFor(method).defaults;
 }
 
 std::string formatRate(double perSecond) {
@@ -63,13 +66,19 @@ int runRender(const RenderOptions& o) {
   settings.maxDepth = uint32_t(o.maxDepth);
   settings.seed = o.seed;
   settings.generalPipelines = o.generalPipelines;
+  settings.cms = cmsMethodFor(o.method);
+  settings.cells = uint32_t(o.cells);
+  CmsScene cms;
+  if (settings.cms.clusters) cms = setUpClusters(prepared, uint32_t(o.maxClusters), settings.cms.defaults);
   std::unique_ptr<VulkanContext> ctx;
   std::unique_ptr<Renderer> backend;
   if (o.backend == "cpu") {
+    if (settings.cms.clusters)
+      throw Error("--method " + o.method + " is not available on the CPU backend yet (use --backend vulkan)");
     backend = std::make_unique<CpuRenderer>(prepared, settings);
   } else {
     ctx = std::make_unique<VulkanContext>(ContextOptions{o.device, o.validation});
-    backend = std::make_unique<WavefrontRenderer>(*ctx, prepared, settings);
+    backend = std::make_unique<WavefrontRenderer>(*ctx, prepared, settings, settings.cms.clusters ? &cms : nullptr);
   }
   Renderer& renderer = *backend;
   double setupSeconds = secondsSince(setupStart);

@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "cms/cms_setup.h"
 #include "output/image.h"
 
 namespace mixtrace {
@@ -17,6 +18,12 @@ struct RenderSettings {
   bool generalPipelines = false;         // Vulkan: ignore the feature set (testing aid)
   uint32_t maxPathsPerChunk = 1u << 20;  // Vulkan: the wavefront's width; larger images go in chunks
   uint32_t threads = 0;                  // CPU: worker threads, 0 = one per core
+  // Controlled mixture sampling (methods learned, cv, cms; ../shared/cms.md).
+  CmsMethod cms;
+  uint32_t cells = 16;           // cells along the scene's longest axis (times 6 normal classes)
+  uint32_t minCellSamples = 32;  // a cell's coefficients are trusted from this many vertices on
+  float ridge = 1e-3f;           // Tikhonov term of the solve, relative to the scaled diagonal
+  float defensive = 0.2f;        // share of the default selection in a learned c_k
 };
 
 struct RenderCounters {

@@ -19,7 +19,26 @@ uint32_t groupsFor(uint32_t n) { return (n + shared::kWorkgroupSize - 1) / share
 
 }  // namespace
 
-WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const RenderSettings& s)
+namespace {
+
+uint32_t floorPowerOfTwo(uint64_t n) {
+  uint32_t p = 1;
+  while (uint64_t(p) * 2 <= n && p < (1u << 30)) p *= 2;
+  return p;
+}
+
+// Slots of the cell table: room for about 8 cells per grid cell on a surface-like layer of the
+// grid, kept so that the statistics buffer stays within 64 MiB.
+uint32_t cellTableSizeFor(uint32_t cells, uint32_t clusters) {
+  uint64_t wanted = std::max<uint64_t>(4096, uint64_t(48) * cells * cells);
+  uint64_t limit = (64ull << 20) / (sizeof(float) * shared::cellStatsStride(clusters));
+  return floorPowerOfTwo(std::min(wanted * 2 - 1, limit));
+}
+
+}  // namespace
+
+WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const RenderSettings& s,
+                                     const CmsScene* cms)
     : ctx_(ctx),
       settings_(s),
       lightCount_(uint32_t(scene.lights.lights.size())),
@@ -41,7 +60,39 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
       film_(ctx, size_t(pixelCount_) * 2 * sizeof(glm::vec3), "film (" + std::to_string(s.width) + "x" + std::to_string(s.height) + ")", true),
       timer_(ctx, 4096) {
   if (s.maxDepth < 1) throw Error("--max-depth must be at least 1");
+  if (s.cms.clusters && !cms) throw Error("internal: a CMS method without light clusters");
   scene_.bindTo(set_);
+  // CMS buffers (placeholders of one element for the other methods, so every binding is valid).
+  const bool useCms = s.cms.clusters && cms && !cms->clusters.clusters.empty();
+  clusterCount_ = useCms ? uint32_t(cms->clusters.clusters.size()) : 1;
+  cellTableSize_ = useCms ? cellTableSizeFor(s.cells, clusterCount_) : 1;
+  const size_t cvPaths = useCms ? pathCount_ : 1;
+  cellKeys_ = Buffer(ctx, size_t(cellTableSize_) * sizeof(uint64_t), "CMS cell table");
+  cellStats_ = Buffer(ctx, size_t(cellTableSize_) * shared::cellStatsStride(clusterCount_) * sizeof(float), "CMS cell statistics");
+  cellSamples_ = Buffer(ctx, size_t(cellTableSize_) * sizeof(uint32_t), "CMS cell sample counts");
+  cellSolution_ = Buffer(ctx, size_t(cellTableSize_) * shared::cellSolutionStride(clusterCount_) * sizeof(float), "CMS cell solutions");
+  clusterDefaults_ = makeBuffer(ctx, useCms ? cms->clusters.defaultSelection : std::vector<float>{1.0f}, "cluster defaults");
+  clusters_ = makeBuffer(ctx, useCms ? cms->clusters.clusters : std::vector<shared::ClusterGpu>(1), "clusters");
+  clusterLights_ = makeBuffer(ctx, useCms ? cms->clusterLights : std::vector<shared::ClusterLightGpu>(1), "cluster lights");
+  cvCell_ = Buffer(ctx, cvPaths * sizeof(uint32_t), "path state (CMS cells)");
+  cvThroughput_ = Buffer(ctx, cvPaths * sizeof(glm::vec3), "path state (CMS throughput)");
+  cvBsdfCos_ = Buffer(ctx, cvPaths * sizeof(glm::vec3), "path state (CMS bsdf cos)");
+  if (useCms) {
+    const Bounds& b = scene.scene.bounds;
+    float longest = std::max({b.extent().x, b.extent().y, b.extent().z, 1e-6f});
+    gridOrigin_ = b.min - 1e-3f * longest;
+    gridInvCellSize_ = float(s.cells) / (longest * 1.002f);
+  }
+  set_.bind(BINDING_CELL_KEYS, cellKeys_);
+  set_.bind(BINDING_CELL_STATS, cellStats_);
+  set_.bind(BINDING_CELL_SAMPLES, cellSamples_);
+  set_.bind(BINDING_CELL_SOLUTION, cellSolution_);
+  set_.bind(BINDING_CLUSTER_DEFAULTS, clusterDefaults_);
+  set_.bind(BINDING_CLUSTERS, clusters_);
+  set_.bind(BINDING_CLUSTER_LIGHTS, clusterLights_);
+  set_.bind(BINDING_CV_CELL, cvCell_);
+  set_.bind(BINDING_CV_THROUGHPUT, cvThroughput_);
+  set_.bind(BINDING_CV_BSDF_COS, cvBsdfCos_);
   set_.bind(BINDING_RAY_ORIGIN, rayOrigin_);
   set_.bind(BINDING_RAY_DIRECTION, rayDirection_);
   set_.bind(BINDING_THROUGHPUT, throughput_);
@@ -55,6 +106,9 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   set_.bind(BINDING_FILM, film_);
 
   std::vector<uint32_t> spec = (s.generalPipelines ? FeatureSet::general() : scene.features).specialization();
+  spec[SPEC_CMS_SELECTION] = useCms;
+  spec[SPEC_CMS_CONTROL_VARIATE] = useCms && s.cms.controlVariate;
+  if (useCms) solver_ = std::make_unique<CellSolver>(ctx, set_);
   VkPipelineLayout layout = set_.pipelineLayout();
   generate_ = std::make_unique<ComputePipeline>(ctx, "generate", layout, spec);
   prepare_ = std::make_unique<ComputePipeline>(ctx, "prepare", layout, spec);
@@ -66,6 +120,16 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     film_.fillZero(cmd);
     queueState_.fillZero(cmd);
+    cellKeys_.fillZero(cmd);
+    cellStats_.fillZero(cmd);
+    cellSamples_.fillZero(cmd);
+    computeBarrier(cmd);
+    // Solving the empty statistics gives every cell the default selection and no control variate.
+    if (solver_) {
+      VkDescriptorSet set = set_.set();
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set_.pipelineLayout(), 0, 1, &set, 0, nullptr);
+      recordSolve(cmd, false);
+    }
   });
 
   VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
@@ -110,6 +174,10 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   pc.maxDepth = settings_.maxDepth;
   pc.lightCount = lightCount_;
   pc.sceneRadius = sceneRadius_;
+  pc.clusterCount = clusterCount_;
+  pc.cellTableSize = cellTableSize_;
+  pc.gridOrigin = gridOrigin_;
+  pc.gridInvCellSize = gridInvCellSize_;
 
   dispatch(cmd, *generate_, pc, groupsFor(paths));
   for (uint32_t depth = 1; depth <= settings_.maxDepth; ++depth) {
@@ -128,8 +196,25 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   dispatch(cmd, *accumulate_, pc, groupsFor(paths));
 }
 
+void WavefrontRenderer::recordSolve(VkCommandBuffer cmd, bool timed) {
+  shared::SolveParams params{};
+  params.cellCount = cellTableSize_;
+  params.clusterCount = clusterCount_;
+  params.minSamples = settings_.minCellSamples;
+  params.flags = (settings_.cms.learnSelection ? shared::kSolveLearnSelection : 0u) |
+                 (settings_.cms.controlVariate ? shared::kSolveControlVariate : 0u);
+  params.ridge = settings_.ridge;
+  params.defensive = settings_.defensive;
+  solver_->record(cmd, params);
+  if (timed) timer_.mark(cmd, "solve");
+  cellStats_.fillZero(cmd);
+  cellSamples_.fillZero(cmd);
+  computeBarrier(cmd);
+  if (timed) timer_.mark(cmd, "reset");
+}
+
 void WavefrontRenderer::renderSamples(uint32_t count) {
-  const uint32_t passesPerSample = 2 + 3 * settings_.maxDepth + 2 * (settings_.maxDepth - 1);
+  const uint32_t passesPerSample = 4 + 3 * settings_.maxDepth + 2 * (settings_.maxDepth - 1);  // + solve, reset
   const uint32_t chunks = (pixelCount_ + pathCount_ - 1) / pathCount_;
   const uint32_t perSubmit = std::max(1u, (timer_.capacity() - 2) / (passesPerSample * chunks));
   while (count > 0) {
@@ -141,9 +226,14 @@ void WavefrontRenderer::renderSamples(uint32_t count) {
     timer_.begin(cmd_);
     VkDescriptorSet set = set_.set();
     vkCmdBindDescriptorSets(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, set_.pipelineLayout(), 0, 1, &set, 0, nullptr);
-    for (uint32_t s = 0; s < n; ++s)
+    for (uint32_t s = 0; s < n; ++s) {
       for (uint32_t offset = 0; offset < pixelCount_; offset += pathCount_)
         recordSample(cmd_, spp_ + s, offset, std::min(pathCount_, pixelCount_ - offset));
+      // Training iterations of doubling length (1, 2, 4, ... spp; cms.md §7): after samples
+      // 1, 3, 7, 15, ... the cells are solved and their statistics start afresh.
+      const uint32_t done = spp_ + s + 1;
+      if (solver_ && ((done + 1) & done) == 0) recordSolve(cmd_, true);
+    }
     vkCheck(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.commandBufferCount = 1;

@@ -11,6 +11,7 @@
 
 #include "output/image.h"
 #include "render/gpu_scene.h"
+#include "cms/gpu_solver.h"
 #include "render/renderer.h"
 #include "scene/prepared_scene.h"
 #include "vulkan/buffer.h"
@@ -23,7 +24,9 @@ class VulkanContext;
 
 class WavefrontRenderer : public Renderer {
  public:
-  WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const RenderSettings& settings);
+  // `cms` holds the light clusters when settings.cms.clusters (learned, cv, cms); else nullptr.
+  WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const RenderSettings& settings,
+                    const CmsScene* cms = nullptr);
   ~WavefrontRenderer() override;
 
   void renderSamples(uint32_t count) override;
@@ -36,6 +39,8 @@ class WavefrontRenderer : public Renderer {
 
  private:
   void recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths);
+  // CMS: solve every cell from the statistics of the iteration that just ended, then clear them.
+  void recordSolve(VkCommandBuffer cmd, bool timed);
   void dispatch(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, uint32_t groups);
   void dispatchIndirect(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, VkDeviceSize offset);
 
@@ -49,6 +54,14 @@ class WavefrontRenderer : public Renderer {
   GpuScene scene_;
   DescriptorSet set_;
   Buffer rayOrigin_, rayDirection_, throughput_, radiance_, rng_, misPdf_, hits_, rayQueue_, shadowQueue_, queueState_, film_;
+  // Controlled mixture sampling: cell table, statistics, solution, clusters, per-path state of the
+  // previous vertex's BSDF sample. One-element placeholders when the method does not use them.
+  uint32_t clusterCount_ = 0, cellTableSize_ = 1;
+  glm::vec3 gridOrigin_{0.0f};
+  float gridInvCellSize_ = 1.0f;
+  Buffer cellKeys_, cellStats_, cellSamples_, cellSolution_, clusterDefaults_, clusters_, clusterLights_;
+  Buffer cvCell_, cvThroughput_, cvBsdfCos_;
+  std::unique_ptr<CellSolver> solver_;
   std::unique_ptr<ComputePipeline> generate_, prepare_, intersect_, shade_, shadow_, accumulate_;
   PassTimer timer_;
   VkFence fence_ = VK_NULL_HANDLE;

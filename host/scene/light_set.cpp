@@ -122,6 +122,11 @@ LightSet buildLightSet(const Scene& scene, const std::vector<uint32_t>& triangle
     set.power.push_back(power);
   }
 
+  // Without clusters every light is its own technique (methods with clusters overwrite these).
+  for (uint32_t i = 0; i < set.lights.size(); ++i) {
+    set.lights[i].cluster = i;
+    set.lights[i].clusterPmf = 1.0f;
+  }
   if (selection == LightSelection::Power) weights = set.power;
   else weights.assign(set.lights.size(), 1.0);
   setSelection(set.lights, weights);

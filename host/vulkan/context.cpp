@@ -57,11 +57,26 @@ int computeQueueFamily(VkPhysicalDevice pd, uint32_t* timestampBits) {
   return -1;
 }
 
-// The features the shaders rely on; a device without them cannot run mixtrace.
+bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
+  uint32_t n = 0;
+  vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
+  std::vector<VkExtensionProperties> ext(n);
+  vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, ext.data());
+  for (auto& e : ext)
+    if (std::strcmp(e.extensionName, name) == 0) return true;
+  return false;
+}
+
+// The features the shaders rely on; a device without them cannot run mixtrace. Float atomics
+// accumulate the CMS cell statistics (VK_EXT_shader_atomic_float, on lavapipe and the common GPU
+// drivers).
 bool supportsRequiredFeatures(VkPhysicalDevice pd, std::string* missing) {
-  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  if (!hasDeviceExtension(pd, VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME)) { *missing = "float atomics"; return false; }
+  VkPhysicalDeviceShaderAtomicFloatFeaturesEXT af{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &af};
   VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
   vkGetPhysicalDeviceFeatures2(pd, &f);
+  if (!af.shaderBufferFloat32AtomicAdd) { *missing = "float atomics"; return false; }
   if (!f12.scalarBlockLayout) { *missing = "scalarBlockLayout"; return false; }
   if (!f.features.shaderInt64 || !f12.shaderBufferInt64Atomics) { *missing = "64-bit integer atomics"; return false; }
   return true;
@@ -131,7 +146,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   }
   if (chosen < 0) {
     if (!options.device.empty()) throw Error("no usable Vulkan device matches --device " + options.device + " (devices: " + names + ")");
-    throw Error("no Vulkan device supports what mixtrace needs (Vulkan 1.2, compute, scalar block layout, 64-bit atomics; devices: " + names + ")");
+    throw Error("no Vulkan device supports what mixtrace needs (Vulkan 1.2, compute, scalar block layout, 64-bit and float atomics; devices: " + names + ")");
   }
   physical_ = devices[size_t(chosen)];
   vkGetPhysicalDeviceProperties(physical_, &properties_);
@@ -147,7 +162,9 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   qci.queueCount = 1;
   qci.pQueuePriorities = &priority;
   // Scalar block layout: one struct layout for C++ and GLSL. 64-bit atomics: the CMS cell table.
-  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceShaderAtomicFloatFeaturesEXT af{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
+  af.shaderBufferFloat32AtomicAdd = VK_TRUE;
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &af};
   f12.scalarBlockLayout = VK_TRUE;
   f12.shaderBufferInt64Atomics = VK_TRUE;
   VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
@@ -156,6 +173,9 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   dci.pNext = &f;
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
+  const char* deviceExtensions[] = {VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME};
+  dci.enabledExtensionCount = 1;
+  dci.ppEnabledExtensionNames = deviceExtensions;
   vkCheck(vkCreateDevice(physical_, &dci, nullptr, &device_), "vkCreateDevice");
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
 

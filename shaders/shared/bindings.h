@@ -34,7 +34,12 @@
 #define BINDING_CELL_SOLUTION 22  // float[cells * cellSolutionStride(L)]
 #define BINDING_CLUSTER_DEFAULTS 23  // float[L]: default selection pmf over clusters
 #define BINDING_CELL_KEYS 24      // uint64[tableSize]: hashed cell keys, 0 = empty (cms_cells.h)
-#define BINDING_COUNT 25
+#define BINDING_CLUSTERS 25       // ClusterGpu[L]
+#define BINDING_CLUSTER_LIGHTS 26 // ClusterLightGpu[lights]: lights grouped by cluster, with CDFs
+#define BINDING_CV_CELL 27        // path state: the previous vertex's cell (kNoCell: none)
+#define BINDING_CV_THROUGHPUT 28  // path state: the previous vertex's throughput
+#define BINDING_CV_BSDF_COS 29    // path state: bsdf * cos of the previous vertex's BSDF sample
+#define BINDING_COUNT 30
 
 // Specialization constants: the scene's feature set (host/scene/features.h fills them).
 #define SPEC_HAS_TEXTURES 0
@@ -42,6 +47,8 @@
 #define SPEC_HAS_PUNCTUAL_LIGHTS 2
 #define SPEC_HAS_METALS 3
 #define SPEC_SINGLE_LIGHT 4
-#define SPEC_COUNT 5
+#define SPEC_CMS_SELECTION 5         // lights chosen through per-cell cluster selection (learned, cv, cms)
+#define SPEC_CMS_CONTROL_VARIATE 6   // the control variate (cv, cms)
+#define SPEC_COUNT 7
 
 #endif

@@ -92,6 +92,8 @@ struct LightGpu {
   float spotScale;     // glTF spot falloff: clamp(cos * scale + offset, 0, 1)^2
   vec3 intensity;      // colour * intensity (W/sr, or W/m^2 for directional)
   float spotOffset;
+  uint cluster;        // its CMS light cluster (its own index when the method has none)
+  float clusterPmf;    // fixed probability of the light inside its cluster
 };
 
 // An emissive triangle of an area light, chosen inside its light by area * radiance.
@@ -112,13 +114,19 @@ struct HitRecord {
 };
 
 // A pending shadow ray and the radiance it adds to its path when unoccluded.
+// With controlled mixture sampling an unoccluded ray also adds its share of the cell's b
+// (cms.md §4): b_k += integrand * statsK, b_B += integrand * statsB.
 struct ShadowRay {
   vec3 origin;
   float tMax;
   vec3 direction;
   uint path;
-  vec3 contribution;
-  float pad;
+  vec3 contribution;   // throughput * integrand / p_eff
+  uint cell;           // CMS cell of the vertex (kNoCell: no statistics)
+  vec3 integrand;      // Le * bsdf * cos, without throughput
+  uint cluster;
+  float statsK;        // w p_k / p_eff^2
+  float statsB;        // w p_B / p_eff^2
 };
 
 // Queue counters and indirect dispatch arguments, in one buffer.
@@ -137,6 +145,12 @@ struct QueueState {
   uint shadowRays[2];
 };
 
+// A light of a cluster, in the cluster-grouped list: cdf is inclusive inside its cluster.
+struct ClusterLightGpu {
+  uint light;
+  float cdf;
+};
+
 // Per-dispatch constants (push constants, <= 128 bytes).
 struct PassConstants {
   uint pathCount;      // paths in this wavefront chunk
@@ -149,8 +163,10 @@ struct PassConstants {
   uint lightCount;
   float sceneRadius;   // for directional lights' shadow rays and offsets
   uint mode;           // pass-specific selector
-  uint pad0;
-  uint pad1;
+  uint clusterCount;   // CMS: L
+  uint cellTableSize;  // CMS: slots of the cell table (a power of two)
+  vec3 gridOrigin;     // CMS: the cell grid's origin (scene bounds minimum)
+  float gridInvCellSize;
 };
 
 const uint kWorkgroupSize = 64u;

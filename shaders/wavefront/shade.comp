@@ -3,9 +3,16 @@
 // Stage 3: at every queued path's hit: emission (MIS-weighted against light sampling), one light
 // sample (queued as a shadow ray with its contribution) and one BSDF sample (the next extension
 // ray). Balance heuristic over the two techniques: p_eff = p_light + p_bsdf.
+//
+// With controlled mixture sampling (CMS_SELECTION: methods learned, cv, cms) the light comes from
+// a cluster chosen by the vertex's cell, p_eff = c_k p_k + p_B, and every sample adds its terms
+// of A and b to the cell (cms.md §4); with CMS_CONTROL_VARIATE (cv, cms) the vertex also pays the
+// control variate: + sum(alpha) - g(z)/p_eff(z) for both samples (cms.md §3). The BSDF sample's
+// terms depend on what it hits, so they are paid at the start of the next depth's shade.
 #include "gpu/buffers.glsl"
+#include "gpu/cms_buffers.glsl"
 #include "shared/bsdf.h"
-#include "shared/lights.h"
+#include "shared/cms_sampling.h"
 #include "shared/ray_offset.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
@@ -13,25 +20,84 @@
 
 layout(local_size_x = kWorkgroupSize) in;
 
+bool isBlack(vec3 c) { return !(c.x > 0.0 || c.y > 0.0 || c.z > 0.0); }
+
+void addStat(uint cell, uint index, float value) {
+  if (value != 0.0) atomicAdd(cellStats[cell * cellStatsStride(pc.clusterCount) + index], value);
+}
+
+// One sample's terms of A: p = (.., p_k, .., p_B) and A_ij += p_i p_j / p_eff^2 (weight w = 1).
+void addSampleToA(uint cell, uint k, float pk, float pB, float peff) {
+  uint L = pc.clusterCount;
+  float inv = 1.0 / (peff * peff);
+  if (k != kNoCell) {
+    addStat(cell, statsAkk(L, k), pk * pk * inv);
+    addStat(cell, statsAkB(L, k), pk * pB * inv);
+  }
+  addStat(cell, statsABB(L), pB * pB * inv);
+}
+
+// One sample's terms of b: b_i += f p_i / p_eff^2, given scaleK = p_k / p_eff^2, scaleB = p_B / p_eff^2.
+void addSampleToB(uint cell, uint k, vec3 f, float scaleK, float scaleB) {
+  uint L = pc.clusterCount;
+  for (uint c = 0u; c < 3u; ++c) {
+    if (k != kNoCell) addStat(cell, statsBk(L, k, c), f[c] * scaleK);
+    addStat(cell, statsBB(L, c), f[c] * scaleB);
+  }
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= queues.rayCount[pc.queueIn]) return;
   uint path = rayQueue[pc.queueIn * pc.pathCount + i];
   HitRecord hit = hits[path];
-  if (hit.triangle == kNoHit) return;   // no environment light: the path ends
-
   vec3 dir = rayDirection[path];
   vec3 beta = throughput[path];
-  SurfaceHit sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, dir);
+  uint L = pc.clusterCount;
+  float prevPdfB = misPdf[path];   // p_B of the BSDF sample that made this ray; 0 for camera rays
+  bool hitEmitter = hit.triangle != kNoHit && HAS_AREA_LIGHTS && triangleShading[hit.triangle].emitter >= 0;
+  SurfaceHit sh;
+  if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, dir);
+
+  // CMS: the previous vertex's BSDF sample, now that its hit is known.
+  float emissionWeight = 1.0;
+  if (CMS_SELECTION && prevPdfB > 0.0) {
+    uint prevCell = cvCell[path];
+    uint j = kNoCell;
+    float pj = 0.0;
+    if (hitEmitter) {
+      j = lights[lightOfTriangle(hit.triangle)].cluster;
+      pj = clusterPointPdf(hit.triangle, rayOrigin[path], sh.position);
+    }
+    float peff = (j != kNoCell ? clusterSelectPmf(prevCell, L, j) * pj : 0.0) + prevPdfB;
+    emissionWeight = prevPdfB / peff;
+    if (CMS_CONTROL_VARIATE && cellSolutionValid(prevCell, L)) {
+      vec3 g = cellAlphaB(prevCell, L) * prevPdfB;
+      if (j != kNoCell) g += cellAlpha(prevCell, L, j) * pj;
+      radiance[path] -= cvThroughput[path] * g / peff;
+    }
+    if (prevCell != kNoCell) {
+      addSampleToA(prevCell, j, pj, prevPdfB, peff);
+      if (hitEmitter) {
+        vec3 f = emittedRadiance(hit.triangle, hit.u, hit.v, -dir) * cvBsdfCos[path];
+        addSampleToB(prevCell, j, f, pj / (peff * peff), prevPdfB / (peff * peff));
+      }
+    }
+  }
+  if (hit.triangle == kNoHit) return;   // no environment light: the path ends
+  if (isBlack(beta)) return;            // continued only to settle the terms above
 
   // Emission reached by this ray.
-  if (HAS_AREA_LIGHTS && triangleShading[hit.triangle].emitter >= 0) {
+  if (hitEmitter) {
     vec3 le = emittedRadiance(hit.triangle, hit.u, hit.v, -dir);
-    float bsdfPdfPrev = misPdf[path];
     float w = 1.0;
-    if (bsdfPdfPrev > 0.0) {
-      float lightPdf = areaLightPdf(hit.triangle, rayOrigin[path], sh.position);
-      w = bsdfPdfPrev / (bsdfPdfPrev + lightPdf);
+    if (prevPdfB > 0.0) {
+      if (CMS_SELECTION) {
+        w = emissionWeight;
+      } else {
+        float lightPdf = areaLightPdf(hit.triangle, rayOrigin[path], sh.position);
+        w = prevPdfB / (prevPdfB + lightPdf);
+      }
     }
     radiance[path] += beta * le * w;
   }
@@ -43,44 +109,92 @@ void main() {
   vec3 wo = toLocal(frame, -dir);
   vec3 origin = offsetRayOrigin(sh.position, sh.geometricNormal);
 
+  uint cell = kNoCell;
+  bool cv = false;
+  if (CMS_SELECTION) {
+    CellGrid grid;
+    grid.origin = pc.gridOrigin;
+    grid.invCellSize = pc.gridInvCellSize;
+    grid.tableSize = pc.cellTableSize;
+    cell = findOrInsertCell(grid, sh.position, sh.geometricNormal);
+    if (cell != kNoCell) atomicAdd(cellSamples[cell], 1u);
+    cv = CMS_CONTROL_VARIATE && cellSolutionValid(cell, L);
+    if (cv) radiance[path] += beta * cellAlphaSum(cell, L);
+  }
+
   // One light sample (next event estimation).
   float uLight = rngNextFloat(rng);
   float uEmitter = rngNextFloat(rng);
   vec2 uPoint = vec2(rngNextFloat(rng), rngNextFloat(rng));
-  LightSample ls;
-  if (pc.lightCount > 0u && sampleLight(sh.position, pc.lightCount, uLight, uEmitter, uPoint, ls) &&
-      dot(ls.direction, sh.geometricNormal) > 0.0) {
-    vec3 wi = toLocal(frame, ls.direction);
-    vec3 f = bsdfEval(bsdf, wo, wi) * abs(wi.z);
-    float w = ls.isDelta ? 1.0 : ls.pdf / (ls.pdf + bsdfPdf(bsdf, wo, wi));
-    vec3 contribution = beta * f * ls.radiance * (w / ls.pdf);
-    if (contribution.x > 0.0 || contribution.y > 0.0 || contribution.z > 0.0) {
-      ShadowRay s;
-      s.origin = origin;
-      s.path = path;
-      s.contribution = contribution;
-      s.pad = 0.0;
-      shadowRay(origin, ls, s.direction, s.tMax);
-      uint slot = atomicAdd(queues.shadowCount, 1u);
-      shadowQueue[slot] = s;
+  if (pc.lightCount > 0u) {
+    LightSample ls;
+    bool carries;
+    uint k = kNoCell;
+    float pk = 0.0;
+    if (CMS_SELECTION) {
+      k = selectCluster(cell, L, uLight);
+      uint light = selectLightInCluster(k, rngNextFloat(rng));
+      carries = sampleLightPoint(sh.position, light, uEmitter, uPoint, ls);
+      pk = lights[light].clusterPmf * ls.pdf;
+      ls.pdf = clusterSelectPmf(cell, L, k) * pk;
+    } else {
+      carries = sampleLight(sh.position, pc.lightCount, uLight, uEmitter, uPoint, ls);
+    }
+    if (ls.pdf > 0.0) {
+      vec3 wi = toLocal(frame, ls.direction);
+      float pB = ls.isDelta ? 0.0 : bsdfPdf(bsdf, wo, wi);
+      float peff = ls.pdf + pB;
+      vec3 f = vec3(0.0);
+      if (carries && dot(ls.direction, sh.geometricNormal) > 0.0) f = bsdfEval(bsdf, wo, wi) * abs(wi.z) * ls.radiance;
+      if (cv) radiance[path] -= beta * (cellAlpha(cell, L, k) * pk + cellAlphaB(cell, L) * pB) / peff;
+      if (CMS_SELECTION && cell != kNoCell) addSampleToA(cell, k, pk, pB, peff);
+      vec3 contribution = beta * f / peff;
+      if (!isBlack(contribution)) {
+        ShadowRay s;
+        s.origin = origin;
+        shadowRay(origin, ls, s.direction, s.tMax);
+        s.path = path;
+        s.contribution = contribution;
+        s.cell = cell;
+        s.integrand = f;
+        s.cluster = k;
+        s.statsK = pk / (peff * peff);
+        s.statsB = pB / (peff * peff);
+        uint slot = atomicAdd(queues.shadowCount, 1u);
+        shadowQueue[slot] = s;
+      }
     }
   }
 
-  // One BSDF sample: the next extension ray. A failed sample ends the path.
+  // One BSDF sample: the next extension ray.
   vec2 uDir = vec2(rngNextFloat(rng), rngNextFloat(rng));
   float uLobe = rngNextFloat(rng);
   vec3 wiLocal;
   float pdf;
   rngState[path] = rng;
-  if (!bsdfSample(bsdf, wo, uDir, uLobe, wiLocal, pdf) || !(pdf > 0.0)) return;
+  bool sampled = bsdfSample(bsdf, wo, uDir, uLobe, wiLocal, pdf) && pdf > 0.0;
   vec3 wiWorld = toWorld(frame, wiLocal);
-  if (!(dot(wiWorld, sh.geometricNormal) > 0.0)) return;
-  vec3 weight = bsdfEval(bsdf, wo, wiLocal) * (abs(wiLocal.z) / pdf);
-  if (!(weight.x > 0.0 || weight.y > 0.0 || weight.z > 0.0)) return;
+  if (!sampled || !(dot(wiWorld, sh.geometricNormal) > 0.0)) {
+    // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
+    // (cms.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
+    if (cv) radiance[path] -= beta * cellAlphaB(cell, L);
+    if (CMS_SELECTION && cell != kNoCell) addStat(cell, statsABB(L), 1.0);
+    return;
+  }
+  vec3 bsdfCos = bsdfEval(bsdf, wo, wiLocal) * abs(wiLocal.z);
+  vec3 weight = bsdfCos / pdf;
+  // Without CMS a path that can carry nothing more ends; with it, the ray is still traced so the
+  // next depth can settle this sample's control-variate and statistics terms.
+  if (!CMS_SELECTION && isBlack(weight)) return;
   throughput[path] = beta * weight;
   misPdf[path] = pdf;
   rayOrigin[path] = origin;
   rayDirection[path] = wiWorld;
+  if (CMS_SELECTION) {
+    cvCell[path] = cell;
+    cvThroughput[path] = beta;
+    cvBsdfCos[path] = bsdfCos;
+  }
   uint queueOut = 1u - pc.queueIn;
   uint slot = atomicAdd(queues.rayCount[queueOut], 1u);
   rayQueue[queueOut * pc.pathCount + slot] = path;

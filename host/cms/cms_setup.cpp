@@ -1,0 +1,42 @@
+#include "cms/cms_setup.h"
+
+namespace mixtrace {
+
+CmsMethod cmsMethodFor(const std::string& method) {
+  CmsMethod m;
+  if (method == "learned") {
+    m.clusters = m.learnSelection = true;
+  } else if (method == "cv") {
+    // The published method: the control variate with the selection kept fixed. It keeps uniform
+    // selection, which here is uniform over lights (each cluster weighted by its light count).
+    m.clusters = m.controlVariate = true;
+    m.defaults = LightSelection::Uniform;
+  } else if (method == "cms") {
+    m.clusters = m.controlVariate = m.learnSelection = true;
+  }
+  return m;
+}
+
+CmsScene setUpClusters(PreparedScene& scene, uint32_t maxClusters, LightSelection defaults) {
+  CmsScene cms;
+  cms.clusters = buildLightClusters(scene, maxClusters, defaults);
+  const LightClusters& c = cms.clusters;
+  for (size_t light = 0; light < scene.lights.lights.size(); ++light) {
+    scene.lights.lights[light].cluster = c.lightCluster[light];
+    scene.lights.lights[light].clusterPmf = c.lightPmfInCluster[light];
+  }
+  cms.clusterLights.resize(c.clusterLights.size());
+  for (const shared::ClusterGpu& cluster : c.clusters) {
+    float cdf = 0.0f;
+    for (uint32_t i = cluster.firstLight; i < cluster.firstLight + cluster.lightCount; ++i) {
+      uint32_t light = c.clusterLights[i];
+      cdf += c.lightPmfInCluster[light];
+      cms.clusterLights[i].light = light;
+      // The last entry is exactly 1 so that any u in [0, 1) finds a light.
+      cms.clusterLights[i].cdf = (i + 1 == cluster.firstLight + cluster.lightCount) ? 1.0f : cdf;
+    }
+  }
+  return cms;
+}
+
+}  // namespace mixtrace
