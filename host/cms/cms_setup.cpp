@@ -20,7 +20,14 @@ CmsMethod cmsMethodFor(const std::string& method) {
 CmsScene setUpClusters(PreparedScene& scene, uint32_t maxClusters, LightSelection defaults) {
   CmsScene cms;
   cms.clusters = buildLightClusters(scene, maxClusters, defaults);
-  const LightClusters& c = cms.clusters;
+  LightClusters& c = cms.clusters;
+  if (defaults == LightSelection::Power) {
+    // The defaults are also the defensive part of a learned selection (cms.md §7). Half of it
+    // uniform over clusters keeps every c_k >= eps / (2 L): the control-variate term of a light
+    // sample, about alpha_k / c_k, stays bounded even for a cluster of very little power.
+    const float uniform = 1.0f / float(c.defaultSelection.size());
+    for (float& d : c.defaultSelection) d = 0.5f * d + 0.5f * uniform;
+  }
   for (size_t light = 0; light < scene.lights.lights.size(); ++light) {
     scene.lights.lights[light].cluster = c.lightCluster[light];
     scene.lights.lights[light].clusterPmf = c.lightPmfInCluster[light];

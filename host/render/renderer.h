@@ -21,7 +21,7 @@ struct RenderSettings {
   // Controlled mixture sampling (methods learned, cv, cms; ../shared/cms.md).
   CmsMethod cms;
   uint32_t cells = 16;           // cells along the scene's longest axis (times 6 normal classes)
-  uint32_t minCellSamples = 32;  // a cell's coefficients are trusted from this many vertices on
+  uint32_t minCellSamples = 64;  // a cell's coefficients are trusted from this many vertices on
   float ridge = 1e-3f;           // Tikhonov term of the solve, relative to the scaled diagonal
   float defensive = 0.2f;        // share of the default selection in a learned c_k
 };

@@ -114,20 +114,27 @@ struct HitRecord {
 };
 
 // A pending shadow ray and the radiance it adds to its path when unoccluded.
-// With controlled mixture sampling an unoccluded ray also adds its share of the cell's b
-// (cms.md §4): b_k += integrand * statsK, b_B += integrand * statsB.
+// With controlled mixture sampling the light sample's control-variate and statistics terms also
+// wait for visibility (cms.md §1: a light point hidden from the vertex is a point the BSDF cannot
+// sample, p_B = 0 there): the shadow pass pays them with the p_B that visibility decides.
 struct ShadowRay {
   vec3 origin;
   float tMax;
   vec3 direction;
   uint path;
-  vec3 contribution;   // throughput * integrand / p_eff
-  uint cell;           // CMS cell of the vertex (kNoCell: no statistics)
+  vec3 contribution;   // throughput * integrand / p_eff, added when unoccluded
+  uint cell;           // CMS cell of the vertex (kNoCell: no statistics, no control variate)
   vec3 integrand;      // Le * bsdf * cos, without throughput
-  uint cluster;
-  float statsK;        // w p_k / p_eff^2
-  float statsB;        // w p_B / p_eff^2
+  uint cluster;        // CMS: the sample's cluster k
+  vec3 throughput;     // CMS: the vertex's throughput (for the control-variate term)
+  float pk;            // CMS: p_k(z) of the light sample
+  float pB;            // CMS: p_B(z) if the point is visible
+  float ck;            // CMS: c_k of the vertex's cell
+  uint flags;          // kShadowRayCms: pay the CMS terms; kShadowRayHidden: known hidden, skip the trace
+  float pad;
 };
+const uint kShadowRayCms = 1u;
+const uint kShadowRayHidden = 2u;
 
 // Queue counters and indirect dispatch arguments, in one buffer.
 struct DispatchArgs {

@@ -140,16 +140,28 @@ void main() {
     } else {
       carries = sampleLight(sh.position, pc.lightCount, uLight, uEmitter, uPoint, ls);
     }
-    if (ls.pdf > 0.0) {
+    bool cmsTerms = CMS_SELECTION && cell != kNoCell;
+    if (ls.pdf > 0.0 || cmsTerms) {
       vec3 wi = toLocal(frame, ls.direction);
-      float pB = ls.isDelta ? 0.0 : bsdfPdf(bsdf, wo, wi);
+      bool above = dot(ls.direction, sh.geometricNormal) > 0.0;
+      if (!(ls.pdf > 0.0)) {
+        // A point with no solid-angle density from here (in this surface's plane, e.g. a light
+        // sampling itself) is a hidden point: p_B = 0 there, and with p_k in the light's own area
+        // measure the terms only need ratios, so any positive p_k does (cms.md §1).
+        above = false;
+        carries = false;
+        pk = 1.0;
+        ls.pdf = clusterSelectPmf(cell, L, k);
+      }
+      float pB = (ls.isDelta || !above) ? 0.0 : bsdfPdf(bsdf, wo, wi);
       float peff = ls.pdf + pB;
       vec3 f = vec3(0.0);
-      if (carries && dot(ls.direction, sh.geometricNormal) > 0.0) f = bsdfEval(bsdf, wo, wi) * abs(wi.z) * ls.radiance;
-      if (cv) radiance[path] -= beta * (cellAlpha(cell, L, k) * pk + cellAlphaB(cell, L) * pB) / peff;
-      if (CMS_SELECTION && cell != kNoCell) addSampleToA(cell, k, pk, pB, peff);
+      if (carries && above) f = bsdfEval(bsdf, wo, wi) * abs(wi.z) * ls.radiance;
       vec3 contribution = beta * f / peff;
-      if (!isBlack(contribution)) {
+      // CMS: whether the BSDF could have sampled this point (p_B) depends on its visibility, so the
+      // sample's control-variate and statistics terms go with the shadow ray. A point below the
+      // surface is hidden by the surface itself and needs no trace.
+      if (!isBlack(contribution) || cmsTerms) {
         ShadowRay s;
         s.origin = origin;
         shadowRay(origin, ls, s.direction, s.tMax);
@@ -158,8 +170,12 @@ void main() {
         s.cell = cell;
         s.integrand = f;
         s.cluster = k;
-        s.statsK = pk / (peff * peff);
-        s.statsB = pB / (peff * peff);
+        s.throughput = beta;
+        s.pk = pk;
+        s.pB = pB;
+        s.ck = ls.pdf / max(pk, 1e-38);
+        s.flags = (cmsTerms ? kShadowRayCms : 0u) | (above ? 0u : kShadowRayHidden);
+        s.pad = 0.0;
         uint slot = atomicAdd(queues.shadowCount, 1u);
         shadowQueue[slot] = s;
       }

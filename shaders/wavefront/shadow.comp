@@ -7,8 +7,7 @@
 #include "gpu/buffers.glsl"
 #include "gpu/cms_buffers.glsl"
 #include "shared/bvh_traverse.h"
-#include "shared/cms_cells.h"
-#include "shared/cms_layouts.h"
+#include "shared/cms_sampling.h"
 
 layout(local_size_x = kWorkgroupSize) in;
 
@@ -16,17 +15,35 @@ void addStat(uint cell, uint index, float value) {
   if (value != 0.0) atomicAdd(cellStats[cell * cellStatsStride(pc.clusterCount) + index], value);
 }
 
+// One light sample's terms of A (cms.md §4): p = (p_k, p_B) over the mixture density p_eff.
+void addSampleToA(uint cell, uint k, float pk, float pB, float peff) {
+  uint L = pc.clusterCount;
+  float inv = 1.0 / (peff * peff);
+  addStat(cell, statsAkk(L, k), pk * pk * inv);
+  addStat(cell, statsAkB(L, k), pk * pB * inv);
+  addStat(cell, statsABB(L), pB * pB * inv);
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= queues.shadowCount) return;
   ShadowRay s = shadowQueue[i];
-  if (traceAny(s.origin, s.direction, s.tMax)) return;
-  radiance[s.path] += s.contribution;
-  if (CMS_SELECTION && s.cell != kNoCell) {
-    uint L = pc.clusterCount;
+  bool visible = (s.flags & kShadowRayHidden) == 0u && !traceAny(s.origin, s.direction, s.tMax);
+  if (visible) radiance[s.path] += s.contribution;
+  if (!CMS_SELECTION || (s.flags & kShadowRayCms) == 0u) return;
+  // A hidden light point cannot be reached by the BSDF: there p_B = 0 and p_eff = c_k p_k.
+  uint L = pc.clusterCount;
+  float pB = visible ? s.pB : 0.0;
+  float peff = s.ck * s.pk + pB;
+  if (!(peff > 0.0)) return;
+  if (CMS_CONTROL_VARIATE && cellSolutionValid(s.cell, L))
+    radiance[s.path] -= s.throughput * (cellAlpha(s.cell, L, s.cluster) * s.pk + cellAlphaB(s.cell, L) * pB) / peff;
+  addSampleToA(s.cell, s.cluster, s.pk, pB, peff);
+  if (visible) {
+    float inv = 1.0 / (peff * peff);
     for (uint c = 0u; c < 3u; ++c) {
-      addStat(s.cell, statsBk(L, s.cluster, c), s.integrand[c] * s.statsK);
-      addStat(s.cell, statsBB(L, c), s.integrand[c] * s.statsB);
+      addStat(s.cell, statsBk(L, s.cluster, c), s.integrand[c] * s.pk * inv);
+      addStat(s.cell, statsBB(L, c), s.integrand[c] * pB * inv);
     }
   }
 }
