@@ -133,6 +133,10 @@ int runRender(const RenderOptions& o) {
   stats.extensionRays = counters.extensionRays;
   stats.shadowRays = counters.shadowRays;
   stats.nonFiniteSamples = counters.nonFiniteSamples;
+  stats.cmsCellsUsed = counters.cellsUsed;
+  stats.cmsCellTableSize = counters.cellTableSize;
+  stats.cmsVerticesWithoutCell = counters.verticesWithoutCell;
+  stats.cmsClusters = uint32_t(cms.clusters.clusters.size());
   stats.validationErrors = ctx ? ctx->validationErrors() : 0;
   stats.passMs = renderer.passTimesMs();
 

@@ -39,6 +39,12 @@ void writeStatsJson(const std::string& path, const RenderStats& s) {
   j["bvh_nodes"] = s.bvhNodes;
   j["lights"] = s.lights;
   j["non_finite_samples"] = s.nonFiniteSamples;
+  if (s.cmsCellTableSize > 0) {
+    j["cms_clusters"] = s.cmsClusters;
+    j["cms_cells_used"] = s.cmsCellsUsed;
+    j["cms_cell_table_size"] = s.cmsCellTableSize;
+    j["cms_vertices_without_cell"] = s.cmsVerticesWithoutCell;
+  }
   j["validation_errors"] = s.validationErrors;
   nlohmann::json passes = nlohmann::json::object();
   for (auto& [name, ms] : s.passMs) passes[name] = ms;

@@ -16,6 +16,8 @@ struct RenderStats {
   uint64_t triangles = 0, lights = 0, bvhNodes = 0;
   uint64_t extensionRays = 0, shadowRays = 0;
   uint64_t nonFiniteSamples = 0;  // caught and dropped, never written to the image
+  uint64_t cmsCellsUsed = 0, cmsCellTableSize = 0, cmsVerticesWithoutCell = 0;
+  uint32_t cmsClusters = 0;
   uint32_t validationErrors = 0;
   std::map<std::string, double> passMs;  // GPU time per pass (Vulkan timestamp queries)
 

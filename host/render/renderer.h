@@ -30,6 +30,9 @@ struct RenderCounters {
   uint64_t nonFiniteSamples = 0;  // NaN/Inf samples caught; they enter the image as 0
   uint64_t extensionRays = 0;
   uint64_t shadowRays = 0;
+  uint64_t cellsUsed = 0;             // CMS: cells of the table that vertices fell into
+  uint64_t cellTableSize = 0;         // CMS: slots of the table
+  uint64_t verticesWithoutCell = 0;   // CMS: vertices refused by a full table (they get no CV)
 };
 
 class Renderer {

@@ -275,6 +275,11 @@ RenderCounters WavefrontRenderer::counters() const {
   c.nonFiniteSamples = q.nonFinite;
   c.extensionRays = uint64_t(q.extensionRays[0]) | (uint64_t(q.extensionRays[1]) << 32);
   c.shadowRays = uint64_t(q.shadowRays[0]) | (uint64_t(q.shadowRays[1]) << 32);
+  if (solver_) {
+    c.verticesWithoutCell = q.verticesWithoutCell;
+    c.cellTableSize = cellTableSize_;
+    for (uint64_t key : cellKeys_.downloadAll<uint64_t>()) c.cellsUsed += key != 0;
+  }
   return c;
 }
 

@@ -150,6 +150,7 @@ struct QueueState {
   DispatchArgs shadowArgs;
   uint extensionRays[2];  // rays traced so far, 64-bit as (low, high): counted by prepare.comp
   uint shadowRays[2];
+  uint verticesWithoutCell;  // CMS: vertices that found the cell table full (no control variate)
 };
 
 // A light of a cluster, in the cluster-grouped list: cdf is inclusive inside its cluster.

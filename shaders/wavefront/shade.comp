@@ -118,6 +118,7 @@ void main() {
     grid.tableSize = pc.cellTableSize;
     cell = findOrInsertCell(grid, sh.position, sh.geometricNormal);
     if (cell != kNoCell) atomicAdd(cellSamples[cell], 1u);
+    else atomicAdd(queues.verticesWithoutCell, 1u);
     cv = CMS_CONTROL_VARIATE && cellSolutionValid(cell, L);
     if (cv) radiance[path] += beta * cellAlphaSum(cell, L);
   }
