@@ -29,11 +29,7 @@ void CellSolver::record(VkCommandBuffer cmd, const shared::SolveParams& params) 
   if (groupsY > ctx_.properties().limits.maxComputeWorkGroupCount[1])
     throw Error("CMS solve: " + std::to_string(params.cellCount) + " cells exceed the device's dispatch limits");
 
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
-  VkDescriptorSet s = set_.set();
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set_.pipelineLayout(), 0, 1, &s, 0, nullptr);
-  vkCmdPushConstants(cmd, set_.pipelineLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(params), &params);
-  vkCmdDispatch(cmd, groupsX, groupsY, 1);
+  recordDispatch(cmd, pipeline_, set_, &params, sizeof(params), groupsX, groupsY);
   computeBarrier(cmd);
 }
 

@@ -96,3 +96,16 @@ void computeBarrier(VkCommandBuffer cmd) {
 }
 
 }  // namespace mixtrace
+
+namespace mixtrace {
+
+void recordDispatch(VkCommandBuffer cmd, const ComputePipeline& pipeline, const DescriptorSet& set,
+                    const void* constants, uint32_t constantBytes, uint32_t groupsX, uint32_t groupsY) {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+  VkDescriptorSet s = set.set();
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout(), 0, 1, &s, 0, nullptr);
+  vkCmdPushConstants(cmd, set.pipelineLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, constantBytes, constants);
+  vkCmdDispatch(cmd, groupsX, groupsY, 1);
+}
+
+}  // namespace mixtrace

@@ -51,4 +51,9 @@ class ComputePipeline {
 // Makes every earlier compute write visible to later compute reads and indirect dispatches.
 void computeBarrier(VkCommandBuffer cmd);
 
+// Binds `pipeline` and `set`, pushes `constants` (any struct the layout's range holds) and
+// dispatches groupsX x groupsY workgroups. For one-off passes (the solve, test kernels).
+void recordDispatch(VkCommandBuffer cmd, const ComputePipeline& pipeline, const DescriptorSet& set,
+                    const void* constants, uint32_t constantBytes, uint32_t groupsX, uint32_t groupsY = 1);
+
 }  // namespace mixtrace

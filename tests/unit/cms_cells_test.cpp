@@ -114,11 +114,7 @@ TEST(CmsCells, GpuInsertionIsConsistentUnderContention) {
   pc.sceneRadius = 1.0f;
   pc.lightCount = tableSize;
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
-    VkDescriptorSet s = set.set();
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout(), 0, 1, &s, 0, nullptr);
-    vkCmdPushConstants(cmd, set.pipelineLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
-    vkCmdDispatch(cmd, (n + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize, 1, 1);
+    recordDispatch(cmd, pipeline, set, &pc, sizeof(pc), (n + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize);
   });
   std::vector<uint32_t> got = slots.downloadAll<uint32_t>();
   std::vector<uint64_t> table = keys.downloadAll<uint64_t>();

@@ -98,11 +98,7 @@ class GpuTracer {
     pc.mode = mode;
     auto start = std::chrono::steady_clock::now();
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
-      VkDescriptorSet s = set_.set();
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set_.pipelineLayout(), 0, 1, &s, 0, nullptr);
-      vkCmdPushConstants(cmd, set_.pipelineLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
-      vkCmdDispatch(cmd, (n + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize, 1, 1);
+      recordDispatch(cmd, pipeline_, set_, &pc, sizeof(pc), (n + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize);
     });
     if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
