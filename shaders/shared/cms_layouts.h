@@ -53,5 +53,13 @@ struct SolveParams {
   float pad1;
 };
 
+// The weight of a vertex's samples in its cell's statistics (cms.md §5): the squared path
+// throughput relative to a rough estimate of the pixel, so a cell minimises the summed relative
+// variance of the pixels it feeds. Any weight keeps the estimator unbiased.
+SHARED_FN float relativeSampleWeight(vec3 throughput, vec3 pixelEstimate) {
+  vec3 r = throughput / (vec3(0.01f) + max(pixelEstimate, vec3(0.0f)));
+  return (r.x * r.x + r.y * r.y + r.z * r.z) * (1.0f / 3.0f);
+}
+
 SHARED_END
 #endif

@@ -26,10 +26,10 @@ void addStat(uint cell, uint index, float value) {
   if (value != 0.0) atomicAdd(cellStats[cell * cellStatsStride(pc.clusterCount) + index], value);
 }
 
-// One sample's terms of A: p = (.., p_k, .., p_B) and A_ij += p_i p_j / p_eff^2 (weight w = 1).
-void addSampleToA(uint cell, uint k, float pk, float pB, float peff) {
+// One sample's terms of A: p = (.., p_k, .., p_B) and A_ij += w p_i p_j / p_eff^2.
+void addSampleToA(uint cell, uint k, float pk, float pB, float peff, float w) {
   uint L = pc.clusterCount;
-  float inv = 1.0 / (peff * peff);
+  float inv = w / (peff * peff);
   if (k != kNoCell) {
     addStat(cell, statsAkk(L, k), pk * pk * inv);
     addStat(cell, statsAkB(L, k), pk * pB * inv);
@@ -77,10 +77,11 @@ void main() {
       radiance[path] -= cvThroughput[path] * g / peff;
     }
     if (prevCell != kNoCell) {
-      addSampleToA(prevCell, j, pj, prevPdfB, peff);
+      float w = relativeSampleWeight(cvThroughput[path], film[2u * (pc.pixelOffset + path)]);
+      addSampleToA(prevCell, j, pj, prevPdfB, peff, w);
       if (hitEmitter) {
         vec3 f = emittedRadiance(hit.triangle, hit.u, hit.v, -dir) * cvBsdfCos[path];
-        addSampleToB(prevCell, j, f, pj / (peff * peff), prevPdfB / (peff * peff));
+        addSampleToB(prevCell, j, f, w * pj / (peff * peff), w * prevPdfB / (peff * peff));
       }
     }
   }
@@ -195,7 +196,8 @@ void main() {
     // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
     // (cms.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
     if (cv) radiance[path] -= beta * cellAlphaB(cell, L);
-    if (CMS_SELECTION && cell != kNoCell) addStat(cell, statsABB(L), 1.0);
+    if (CMS_SELECTION && cell != kNoCell)
+      addStat(cell, statsABB(L), relativeSampleWeight(beta, film[2u * (pc.pixelOffset + path)]));
     return;
   }
   vec3 bsdfCos = bsdfEval(bsdf, wo, wiLocal) * abs(wiLocal.z);

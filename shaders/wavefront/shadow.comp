@@ -16,9 +16,9 @@ void addStat(uint cell, uint index, float value) {
 }
 
 // One light sample's terms of A (cms.md §4): p = (p_k, p_B) over the mixture density p_eff.
-void addSampleToA(uint cell, uint k, float pk, float pB, float peff) {
+void addSampleToA(uint cell, uint k, float pk, float pB, float peff, float w) {
   uint L = pc.clusterCount;
-  float inv = 1.0 / (peff * peff);
+  float inv = w / (peff * peff);
   addStat(cell, statsAkk(L, k), pk * pk * inv);
   addStat(cell, statsAkB(L, k), pk * pB * inv);
   addStat(cell, statsABB(L), pB * pB * inv);
@@ -38,9 +38,10 @@ void main() {
   if (!(peff > 0.0)) return;
   if (CMS_CONTROL_VARIATE && cellSolutionValid(s.cell, L))
     radiance[s.path] -= s.throughput * (cellAlpha(s.cell, L, s.cluster) * s.pk + cellAlphaB(s.cell, L) * pB) / peff;
-  addSampleToA(s.cell, s.cluster, s.pk, pB, peff);
+  float w = relativeSampleWeight(s.throughput, film[2u * (pc.pixelOffset + s.path)]);
+  addSampleToA(s.cell, s.cluster, s.pk, pB, peff, w);
   if (visible) {
-    float inv = 1.0 / (peff * peff);
+    float inv = w / (peff * peff);
     for (uint c = 0u; c < 3u; ++c) {
       addStat(s.cell, statsBk(L, s.cluster, c), s.integrand[c] * s.pk * inv);
       addStat(s.cell, statsBB(L, c), s.integrand[c] * pB * inv);
