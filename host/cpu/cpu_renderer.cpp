@@ -17,8 +17,6 @@ namespace {
 
 constexpr uint32_t kTileSize = 16;
 
-bool isBlack(const glm::vec3& c) { return !(c.x > 0.0f || c.y > 0.0f || c.z > 0.0f); }
-
 // One path through the scene: emission at every vertex (MIS-weighted against light sampling),
 // one light sample and one BSDF sample per vertex, balance heuristic. Returns its radiance.
 glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32_t maxDepth, uint32_t lightCount,

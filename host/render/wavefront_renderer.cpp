@@ -12,8 +12,6 @@
 namespace mixtrace {
 namespace {
 
-constexpr uint32_t kPrepareRays = 0;
-constexpr uint32_t kPrepareShadows = 1;
 
 uint32_t groupsFor(uint32_t n) { return (n + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize; }
 
@@ -42,7 +40,6 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
     : ctx_(ctx),
       settings_(s),
       lightCount_(uint32_t(scene.lights.lights.size())),
-      sceneRadius_(scene.sceneRadius),
       pixelCount_(s.width * s.height),
       pathCount_(std::min(s.width * s.height, s.maxPathsPerChunk)),
       scene_(ctx, scene, makeCamera(scene.scene, s.width, s.height)),
@@ -173,7 +170,6 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   pc.seed = settings_.seed;
   pc.maxDepth = settings_.maxDepth;
   pc.lightCount = lightCount_;
-  pc.sceneRadius = sceneRadius_;
   pc.clusterCount = clusterCount_;
   pc.cellTableSize = cellTableSize_;
   pc.gridOrigin = gridOrigin_;
@@ -183,12 +179,12 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   for (uint32_t depth = 1; depth <= settings_.maxDepth; ++depth) {
     pc.depth = depth;
     pc.queueIn = (depth - 1) & 1u;
-    pc.mode = kPrepareRays;
+    pc.mode = shared::kPrepareRays;
     dispatch(cmd, *prepare_, pc, 1);
     dispatchIndirect(cmd, *intersect_, pc, offsetof(shared::QueueState, rayArgs));
     dispatchIndirect(cmd, *shade_, pc, offsetof(shared::QueueState, rayArgs));
     if (depth < settings_.maxDepth) {   // the last depth only adds emission: no shadow rays
-      pc.mode = kPrepareShadows;
+      pc.mode = shared::kPrepareShadows;
       dispatch(cmd, *prepare_, pc, 1);
       dispatchIndirect(cmd, *shadow_, pc, offsetof(shared::QueueState, shadowArgs));
     }

@@ -47,7 +47,6 @@ class WavefrontRenderer : public Renderer {
   VulkanContext& ctx_;
   RenderSettings settings_;
   uint32_t lightCount_;
-  float sceneRadius_;
   uint32_t pixelCount_;
   uint32_t pathCount_;
   uint32_t spp_ = 0;

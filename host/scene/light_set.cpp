@@ -4,12 +4,13 @@
 #include <cmath>
 #include <map>
 
+#include "shared/sampling.h"
 #include "util/log.h"
 
 namespace mixtrace {
 namespace {
 
-double luminance(const glm::vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+double luminance(const glm::vec3& c) { return shared::luminance(c); }
 
 glm::vec3 averageEmission(const Scene& scene, const MaterialGpu& m) {
   glm::vec3 e = m.emission;

@@ -159,6 +159,10 @@ struct ClusterLightGpu {
   float cdf;
 };
 
+// PassConstants.mode of the prepare stage.
+const uint kPrepareRays = 0u;     // before intersect + shade
+const uint kPrepareShadows = 1u;  // before shadow
+
 // Per-dispatch constants (push constants, <= 128 bytes).
 struct PassConstants {
   uint pathCount;      // paths in this wavefront chunk
@@ -169,7 +173,6 @@ struct PassConstants {
   uint maxDepth;       // Mitsuba convention: 1 = emitters seen directly
   uint queueIn;        // which rayCount/queue is read (0/1)
   uint lightCount;
-  float sceneRadius;   // for directional lights' shadow rays and offsets
   uint mode;           // pass-specific selector
   uint clusterCount;   // CMS: L
   uint cellTableSize;  // CMS: slots of the cell table (a power of two)

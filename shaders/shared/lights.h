@@ -141,7 +141,7 @@ SHARED_FN bool sampleLightPoint(vec3 p, uint light, float uEmitter, vec2 uPoint,
     if (!(cosLight > 0.0f)) return false;
     s.pdf = em.pmf * 2.0f * dist2 / (twoArea * cosLight);
     s.radiance = emittedRadiance(em.triangle, bary.y, bary.z, -d);
-    return s.radiance.x > 0.0f || s.radiance.y > 0.0f || s.radiance.z > 0.0f;
+    return !isBlack(s.radiance);
   }
   if (HAS_PUNCTUAL_LIGHTS) {
     s.pdf = 1.0f;
@@ -159,7 +159,7 @@ SHARED_FN bool sampleLightPoint(vec3 p, uint light, float uEmitter, vec2 uPoint,
     s.direction = d / s.distance;
     s.radiance = l.intensity / dist2;
     if (l.kind == kLightSpot) s.radiance = s.radiance * spotFalloff(l, -s.direction);
-    return s.radiance.x > 0.0f || s.radiance.y > 0.0f || s.radiance.z > 0.0f;
+    return !isBlack(s.radiance);
   }
   return false;
 }

@@ -46,6 +46,9 @@ SHARED_FN vec3 toWorld(OrthonormalBasis basis, vec3 v) {
 // Colour helpers.
 
 // Relative luminance of a linear Rec. 709 / sRGB colour.
+// True when no channel is positive (also for NaN): nothing to add or to carry on.
+SHARED_FN bool isBlack(vec3 c) { return !(c.x > 0.0f || c.y > 0.0f || c.z > 0.0f); }
+
 SHARED_FN float luminance(vec3 c) {
   return dot(c, vec3(0.2126f, 0.7152f, 0.0722f));
 }

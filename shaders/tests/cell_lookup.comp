@@ -17,8 +17,8 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.pathCount) return;
   CellGrid g;
-  g.origin = vec3(0.0);
-  g.invCellSize = pc.sceneRadius;   // the test passes cells per unit length here
-  g.tableSize = pc.lightCount;      // and the table size here
+  g.origin = pc.gridOrigin;
+  g.invCellSize = pc.gridInvCellSize;
+  g.tableSize = pc.cellTableSize;
   rngState[i] = findOrInsertCell(g, rayOrigin[i], rayDirection[i]);
 }

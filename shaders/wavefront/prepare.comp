@@ -6,8 +6,6 @@
 
 layout(local_size_x = 1) in;
 
-const uint kPrepareRays = 0u;     // before intersect + shade
-const uint kPrepareShadows = 1u;  // before shadow
 
 // 64-bit ray counters as two uints: a single invocation runs this, so the carry needs no atomics.
 void addToCounter(inout uint counter[2], uint n) {

@@ -11,6 +11,7 @@
 // terms depend on what it hits, so they are paid at the start of the next depth's shade.
 #include "gpu/buffers.glsl"
 #include "gpu/cms_buffers.glsl"
+#include "gpu/cms_statistics.glsl"
 #include "shared/bsdf.h"
 #include "shared/cms_sampling.h"
 #include "shared/ray_offset.h"
@@ -19,32 +20,6 @@
 #include "shared/surface.h"
 
 layout(local_size_x = kWorkgroupSize) in;
-
-bool isBlack(vec3 c) { return !(c.x > 0.0 || c.y > 0.0 || c.z > 0.0); }
-
-void addStat(uint cell, uint index, float value) {
-  if (value != 0.0) atomicAdd(cellStats[cell * cellStatsStride(pc.clusterCount) + index], value);
-}
-
-// One sample's terms of A: p = (.., p_k, .., p_B) and A_ij += w p_i p_j / p_eff^2.
-void addSampleToA(uint cell, uint k, float pk, float pB, float peff, float w) {
-  uint L = pc.clusterCount;
-  float inv = w / (peff * peff);
-  if (k != kNoCell) {
-    addStat(cell, statsAkk(L, k), pk * pk * inv);
-    addStat(cell, statsAkB(L, k), pk * pB * inv);
-  }
-  addStat(cell, statsABB(L), pB * pB * inv);
-}
-
-// One sample's terms of b: b_i += f p_i / p_eff^2, given scaleK = p_k / p_eff^2, scaleB = p_B / p_eff^2.
-void addSampleToB(uint cell, uint k, vec3 f, float scaleK, float scaleB) {
-  uint L = pc.clusterCount;
-  for (uint c = 0u; c < 3u; ++c) {
-    if (k != kNoCell) addStat(cell, statsBk(L, k, c), f[c] * scaleK);
-    addStat(cell, statsBB(L, c), f[c] * scaleB);
-  }
-}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;

@@ -6,23 +6,11 @@
 // integrand includes visibility, known only here.
 #include "gpu/buffers.glsl"
 #include "gpu/cms_buffers.glsl"
+#include "gpu/cms_statistics.glsl"
 #include "shared/bvh_traverse.h"
 #include "shared/cms_sampling.h"
 
 layout(local_size_x = kWorkgroupSize) in;
-
-void addStat(uint cell, uint index, float value) {
-  if (value != 0.0) atomicAdd(cellStats[cell * cellStatsStride(pc.clusterCount) + index], value);
-}
-
-// One light sample's terms of A (cms.md §4): p = (p_k, p_B) over the mixture density p_eff.
-void addSampleToA(uint cell, uint k, float pk, float pB, float peff, float w) {
-  uint L = pc.clusterCount;
-  float inv = w / (peff * peff);
-  addStat(cell, statsAkk(L, k), pk * pk * inv);
-  addStat(cell, statsAkB(L, k), pk * pB * inv);
-  addStat(cell, statsABB(L), pB * pB * inv);
-}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -40,11 +28,5 @@ void main() {
     radiance[s.path] -= s.throughput * (cellAlpha(s.cell, L, s.cluster) * s.pk + cellAlphaB(s.cell, L) * pB) / peff;
   float w = relativeSampleWeight(s.throughput, film[2u * (pc.pixelOffset + s.path)]);
   addSampleToA(s.cell, s.cluster, s.pk, pB, peff, w);
-  if (visible) {
-    float inv = w / (peff * peff);
-    for (uint c = 0u; c < 3u; ++c) {
-      addStat(s.cell, statsBk(L, s.cluster, c), s.integrand[c] * s.pk * inv);
-      addStat(s.cell, statsBB(L, c), s.integrand[c] * pB * inv);
-    }
-  }
+  if (visible) addSampleToB(s.cell, s.cluster, s.integrand, w * s.pk / (peff * peff), w * pB / (peff * peff));
 }

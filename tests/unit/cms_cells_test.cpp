@@ -111,8 +111,9 @@ TEST(CmsCells, GpuInsertionIsConsistentUnderContention) {
   set.bind(BINDING_CELL_KEYS, keys);
   shared::PassConstants pc{};
   pc.pathCount = n;
-  pc.sceneRadius = 1.0f;
-  pc.lightCount = tableSize;
+  pc.gridOrigin = glm::vec3(0.0f);
+  pc.gridInvCellSize = 1.0f;
+  pc.cellTableSize = tableSize;
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     recordDispatch(cmd, pipeline, set, &pc, sizeof(pc), (n + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize);
   });
