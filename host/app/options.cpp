@@ -140,6 +140,10 @@ const RenderOptionSpec kOptionSpecs[] = {
      [](RenderOptions& o, const std::string& n, const std::string& v) {
        o.cells = static_cast<int>(parseInteger(n, v, 1, 4096, "an integer in 1..4096"));
      }},
+    {"--relative-weighting", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) {
+       o.relativeWeighting = oneOf(n, v, {"on", "off"}, "setting") == "on";
+     }},
     {"--stats", nullptr, true, [](RenderOptions& o, const std::string&, const std::string& v) { o.statsPath = v; }},
     {"--device", nullptr, true, [](RenderOptions& o, const std::string&, const std::string& v) { o.device = v; }},
     {"--no-png", nullptr, false, [](RenderOptions& o, const std::string&, const std::string&) { o.png = false; }},
@@ -160,6 +164,8 @@ const CompareOptionSpec kCompareOptionSpecs[] = {
      }},
     {"--json", nullptr, true, [](CompareOptions& o, const std::string&, const std::string& v) { o.reportJson = v; }},
     {"--quiet", "-q", false, [](CompareOptions& o, const std::string&, const std::string&) { o.quiet = true; }},
+    {"--error-only", nullptr, false,
+     [](CompareOptions& o, const std::string&, const std::string&) { o.errorOnly = true; }},
 };
 
 template <typename Options, size_t N>
@@ -351,6 +357,9 @@ std::string helpText() {
           "                       axis, times 6 normal directions (default: "
        << defaults.cells
        << ")\n"
+          "  --relative-weighting on|off\n"
+          "                       learned/cv/cms: weight the cells' statistics by\n"
+          "                       path throughput relative to the pixel (default: on)\n"
           "  --method NAME        light transport method (default: "
        << defaults.method << "):\n";
   for (const std::string& method : kMethods) {
@@ -389,6 +398,8 @@ std::string helpText() {
           "                       instead of max(2, 0.1%)\n"
           "  --json FILE.json     write the full result as JSON\n"
           "  -q, --quiet          no summary line; the exit status tells\n"
+          "  --error-only         only print 'relMSE X' of A against the reference B\n"
+          "                       (no test, no variance channels needed; exit 0)\n"
           "  Exit status: "
        << kCompareExitAgree << " the images agree, " << kCompareExitDiffer << " they differ, " << kCompareExitError
        << " error (bad\n"

@@ -36,6 +36,7 @@ struct RenderOptions {
   bool variance = false;         // --variance: also write per-pixel variance of the mean
   int maxClusters = 16;          // --max-clusters: CMS light clusters (techniques), 1..32
   int cells = 16;                // --cells: CMS cells along the longest scene axis
+  bool relativeWeighting = true; // --relative-weighting on|off: CMS statistics weighting (cms.md §5)
 };
 
 // `mixtrace compare`: a statistical test of whether two renders (written with --variance) estimate
@@ -46,6 +47,7 @@ struct CompareOptions {
   double maxFailFraction = -1;   // --max-fail-fraction: tolerated failing fraction; < 0 = default rule
   std::string reportJson;        // --json FILE: write the full result as JSON
   bool quiet = false;            // -q/--quiet: no summary line, only the exit code
+  bool errorOnly = false;        // --error-only: print relMSE of A against B; no variance needed
 };
 
 // Exit codes of `mixtrace compare` (documented in --help), like diff(1).

@@ -68,6 +68,7 @@ int runRender(const RenderOptions& o) {
   settings.generalPipelines = o.generalPipelines;
   settings.cms = cmsMethodFor(o.method);
   settings.cells = uint32_t(o.cells);
+  settings.relativeWeighting = o.relativeWeighting;
   CmsScene cms;
   if (settings.cms.clusters) cms = setUpClusters(prepared, uint32_t(o.maxClusters), settings.cms.defaults);
   std::unique_ptr<VulkanContext> ctx;

@@ -87,7 +87,7 @@ std::vector<glm::dvec3> solveSystem(const float* stats, uint32_t L, double ridge
 }  // namespace
 
 CellSolution solveCellReference(const float* stats, uint32_t samples, uint32_t L, const SolveParams& params,
-                                const float* defaults) {
+                                const float* defaults, const float* previousSelect) {
   CellSolution out;
   out.alpha.assign(L, glm::dvec3(0.0));
   out.select.assign(L, 0.0);
@@ -146,6 +146,21 @@ CellSolution solveCellReference(const float* stats, uint32_t samples, uint32_t L
     selectSum += c;
   }
   for (double& c : out.select) c /= selectSum;
+
+  // Keep the previous selection (and the statistics gathered under it) unless there is none yet,
+  // or the cell is solved and its selection moved by more than the threshold in total variation.
+  bool previousValid = previousSelect != nullptr;
+  double previousSum = 0.0, change = 0.0;
+  for (uint32_t k = 0; previousValid && k < L; ++k) {
+    previousValid = std::isfinite(previousSelect[k]) && previousSelect[k] >= 0.0f;
+    previousSum += previousSelect[k];
+    change += std::abs(out.select[k] - previousSelect[k]);
+  }
+  previousValid = previousValid && std::abs(previousSum - 1.0) <= 1e-3;
+  bool adopt = !previousValid || (out.solved && 0.5 * change > shared::kSelectionChangeThreshold);
+  if (!adopt)
+    for (uint32_t k = 0; k < L; ++k) out.select[k] = previousSelect[k];
+  out.resetStatistics = adopt || !allFinite;
   return out;
 }
 

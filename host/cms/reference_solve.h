@@ -19,10 +19,12 @@ struct CellSolution {
   bool valid = false;              // the cell uses its control variate
   bool solved = false;             // the system was solved (alpha finite, enough samples), whatever the flags
   std::vector<bool> inSystem;      // per technique, clusters then B: took part in the final system
+  bool resetStatistics = false;    // the cell's statistics restart (new selection, or non-finite alpha)
 };
 
-// stats: cellStatsStride(L) floats of one cell; defaults: L floats (the default selection pmf).
+// stats: cellStatsStride(L) floats of one cell; defaults: L floats (the default selection pmf);
+// previousSelect: the L floats of the selection the cell used so far (nullptr: none yet).
 CellSolution solveCellReference(const float* stats, uint32_t samples, uint32_t L, const shared::SolveParams& params,
-                                const float* defaults);
+                                const float* defaults, const float* previousSelect = nullptr);
 
 }  // namespace mixtrace

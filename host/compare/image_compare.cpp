@@ -188,6 +188,15 @@ ComparisonResult compareExrFiles(const std::string& pathA, const std::string& pa
   return compareImages(a, varA, b, varB, alpha, maxFailFraction);
 }
 
+double relativeMseOfExrFiles(const std::string& pathA, const std::string& pathB) {
+  const Image a = readExr(pathA, nullptr, nullptr);
+  const Image b = readExr(pathB, nullptr, nullptr);
+  if (!sameSize(a, b))
+    throw Error("cannot compare images of different sizes ('" + pathA + "' is " + sizeText(a) + ", '" + pathB +
+                "' is " + sizeText(b) + ")");
+  return relativeMse(a, b);
+}
+
 std::string ComparisonResult::summary() const {
   char line[512];
   std::snprintf(line, sizeof(line),

@@ -96,5 +96,7 @@ double sidakTwoSidedThreshold(double alpha, size_t tests);
 
 // The relMSE of `image` against `reference` alone (cms.md §8); same size required.
 double relativeMse(const Image& image, const Image& reference);
+// The same for two EXR files (B the reference); throws Error for unreadable or mismatched files.
+double relativeMseOfExrFiles(const std::string& pathA, const std::string& pathB);
 
 }  // namespace mixtrace

@@ -24,6 +24,7 @@ struct RenderSettings {
   uint32_t minCellSamples = 64;  // a cell's coefficients are trusted from this many vertices on
   float ridge = 1e-3f;           // Tikhonov term of the solve, relative to the scaled diagonal
   float defensive = 0.2f;        // share of the default selection in a learned c_k
+  bool relativeWeighting = true; // statistics weighted by throughput relative to the pixel (cms.md §5)
 };
 
 struct RenderCounters {

@@ -74,6 +74,7 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   cvCell_ = Buffer(ctx, cvPaths * sizeof(uint32_t), "path state (CMS cells)");
   cvThroughput_ = Buffer(ctx, cvPaths * sizeof(glm::vec3), "path state (CMS throughput)");
   cvBsdfCos_ = Buffer(ctx, cvPaths * sizeof(glm::vec3), "path state (CMS bsdf cos)");
+  pixelEstimate_ = Buffer(ctx, size_t(useCms ? pixelCount_ : 1) * sizeof(glm::vec3), "CMS pixel estimate");
   if (useCms) {
     const Bounds& b = scene.scene.bounds;
     float longest = std::max({b.extent().x, b.extent().y, b.extent().z, 1e-6f});
@@ -90,6 +91,7 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   set_.bind(BINDING_CV_CELL, cvCell_);
   set_.bind(BINDING_CV_THROUGHPUT, cvThroughput_);
   set_.bind(BINDING_CV_BSDF_COS, cvBsdfCos_);
+  set_.bind(BINDING_PIXEL_ESTIMATE, pixelEstimate_);
   set_.bind(BINDING_RAY_ORIGIN, rayOrigin_);
   set_.bind(BINDING_RAY_DIRECTION, rayDirection_);
   set_.bind(BINDING_THROUGHPUT, throughput_);
@@ -105,7 +107,10 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   std::vector<uint32_t> spec = (s.generalPipelines ? FeatureSet::general() : scene.features).specialization();
   spec[SPEC_CMS_SELECTION] = useCms;
   spec[SPEC_CMS_CONTROL_VARIATE] = useCms && s.cms.controlVariate;
+  spec[SPEC_CMS_RELATIVE_WEIGHT] = useCms && s.relativeWeighting;
   if (useCms) solver_ = std::make_unique<CellSolver>(ctx, set_);
+  if (useCms && s.relativeWeighting)
+    pixelEstimatePass_ = std::make_unique<ComputePipeline>(ctx, "pixel_estimate", set_.pipelineLayout(), spec);
   VkPipelineLayout layout = set_.pipelineLayout();
   generate_ = std::make_unique<ComputePipeline>(ctx, "generate", layout, spec);
   prepare_ = std::make_unique<ComputePipeline>(ctx, "prepare", layout, spec);
@@ -120,6 +125,8 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
     cellKeys_.fillZero(cmd);
     cellStats_.fillZero(cmd);
     cellSamples_.fillZero(cmd);
+    cellSolution_.fillZero(cmd);   // no cell has a selection yet
+    pixelEstimate_.fillZero(cmd);
     computeBarrier(cmd);
     // Solving the empty statistics gives every cell the default selection and no control variate.
     if (solver_) {
@@ -201,16 +208,18 @@ void WavefrontRenderer::recordSolve(VkCommandBuffer cmd, bool timed) {
                  (settings_.cms.controlVariate ? shared::kSolveControlVariate : 0u);
   params.ridge = settings_.ridge;
   params.defensive = settings_.defensive;
+  // The solve also restarts the statistics of cells whose selection changed (shared/cms_solve.h).
   solver_->record(cmd, params);
   if (timed) timer_.mark(cmd, "solve");
-  cellStats_.fillZero(cmd);
-  cellSamples_.fillZero(cmd);
-  computeBarrier(cmd);
-  if (timed) timer_.mark(cmd, "reset");
+  if (pixelEstimatePass_ && timed) {   // (untimed: the set-up solve, before any film exists)
+    shared::PassConstants pc{};
+    pc.pathCount = pixelCount_;
+    dispatch(cmd, *pixelEstimatePass_, pc, groupsFor(pixelCount_));
+  }
 }
 
 void WavefrontRenderer::renderSamples(uint32_t count) {
-  const uint32_t passesPerSample = 4 + 3 * settings_.maxDepth + 2 * (settings_.maxDepth - 1);  // + solve, reset
+  const uint32_t passesPerSample = 4 + 3 * settings_.maxDepth + 2 * (settings_.maxDepth - 1);  // + solve, estimate
   const uint32_t chunks = (pixelCount_ + pathCount_ - 1) / pathCount_;
   const uint32_t perSubmit = std::max(1u, (timer_.capacity() - 2) / (passesPerSample * chunks));
   while (count > 0) {
@@ -226,7 +235,7 @@ void WavefrontRenderer::renderSamples(uint32_t count) {
       for (uint32_t offset = 0; offset < pixelCount_; offset += pathCount_)
         recordSample(cmd_, spp_ + s, offset, std::min(pathCount_, pixelCount_ - offset));
       // Training iterations of doubling length (1, 2, 4, ... spp; cms.md §7): after samples
-      // 1, 3, 7, 15, ... the cells are solved and their statistics start afresh.
+      // 1, 3, 7, 15, ... the cells are solved.
       const uint32_t done = spp_ + s + 1;
       if (solver_ && ((done + 1) & done) == 0) recordSolve(cmd_, true);
     }

@@ -39,7 +39,8 @@ class WavefrontRenderer : public Renderer {
 
  private:
   void recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths);
-  // CMS: solve every cell from the statistics of the iteration that just ended, then clear them.
+  // CMS, between training iterations: solve every cell from its statistics so far, and refresh
+  // the pixel estimate the next iteration's statistics are weighted by.
   void recordSolve(VkCommandBuffer cmd, bool timed);
   void dispatch(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, uint32_t groups);
   void dispatchIndirect(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, VkDeviceSize offset);
@@ -59,8 +60,9 @@ class WavefrontRenderer : public Renderer {
   glm::vec3 gridOrigin_{0.0f};
   float gridInvCellSize_ = 1.0f;
   Buffer cellKeys_, cellStats_, cellSamples_, cellSolution_, clusterDefaults_, clusters_, clusterLights_;
-  Buffer cvCell_, cvThroughput_, cvBsdfCos_;
+  Buffer cvCell_, cvThroughput_, cvBsdfCos_, pixelEstimate_;
   std::unique_ptr<CellSolver> solver_;
+  std::unique_ptr<ComputePipeline> pixelEstimatePass_;
   std::unique_ptr<ComputePipeline> generate_, prepare_, intersect_, shade_, shadow_, accumulate_;
   PassTimer timer_;
   VkFence fence_ = VK_NULL_HANDLE;

@@ -13,9 +13,11 @@ layout(scalar, binding = BINDING_CLUSTER_LIGHTS) readonly buffer ClusterLightBuf
 layout(scalar, binding = BINDING_CV_CELL) buffer CvCellBuf { uint cvCell[]; };
 layout(scalar, binding = BINDING_CV_THROUGHPUT) buffer CvThroughputBuf { vec3 cvThroughput[]; };
 layout(scalar, binding = BINDING_CV_BSDF_COS) buffer CvBsdfCosBuf { vec3 cvBsdfCos[]; };
+layout(scalar, binding = BINDING_PIXEL_ESTIMATE) buffer PixelEstimateBuf { vec3 pixelEstimate[]; };
 
 layout(constant_id = SPEC_CMS_SELECTION) const bool CMS_SELECTION = false;
 layout(constant_id = SPEC_CMS_CONTROL_VARIATE) const bool CMS_CONTROL_VARIATE = false;
+layout(constant_id = SPEC_CMS_RELATIVE_WEIGHT) const bool CMS_RELATIVE_WEIGHT = true;
 
 #define CELL_KEY_LOAD(slot) cellKeys[slot]
 #define CELL_KEY_CAS(slot, expected, desired) atomicCompSwap(cellKeys[slot], expected, desired)

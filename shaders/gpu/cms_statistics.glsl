@@ -6,6 +6,19 @@
 #include "shared/cms_cells.h"
 #include "shared/cms_layouts.h"
 
+// Whether this sample's vertices add to the statistics. With relative weighting the first sample
+// only makes the pixel estimate the weights divide by: before it, every pixel would look black and
+// every vertex would get the largest weight, and those statistics would outweigh all later ones.
+bool gatheringStatistics() { return !CMS_RELATIVE_WEIGHT || pc.sampleIndex > 0u; }
+
+// The weight of a sample of `path`'s vertex with throughput `beta` in its cell (cms.md §5): relative
+// to the estimate of the path's pixel made at the start of this iteration (shared/pixel_estimate.h),
+// or 1 (--relative-weighting off); 0 while not gathering.
+float sampleWeight(vec3 beta, uint path) {
+  if (!gatheringStatistics()) return 0.0;
+  return CMS_RELATIVE_WEIGHT ? relativeSampleWeight(beta, pixelEstimate[pc.pixelOffset + path]) : 1.0;
+}
+
 void addStat(uint cell, uint index, float value) {
   if (value != 0.0) atomicAdd(cellStats[cell * cellStatsStride(pc.clusterCount) + index], value);
 }

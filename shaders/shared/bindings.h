@@ -39,7 +39,8 @@
 #define BINDING_CV_CELL 27        // path state: the previous vertex's cell (kNoCell: none)
 #define BINDING_CV_THROUGHPUT 28  // path state: the previous vertex's throughput
 #define BINDING_CV_BSDF_COS 29    // path state: bsdf * cos of the previous vertex's BSDF sample
-#define BINDING_COUNT 30
+#define BINDING_PIXEL_ESTIMATE 30  // vec3[pixels]: the pixel values CMS weights relate to (pixel_estimate.h)
+#define BINDING_COUNT 31
 
 // Specialization constants: the scene's feature set (host/scene/features.h fills them).
 #define SPEC_HAS_TEXTURES 0
@@ -49,6 +50,7 @@
 #define SPEC_SINGLE_LIGHT 4
 #define SPEC_CMS_SELECTION 5         // lights chosen through per-cell cluster selection (learned, cv, cms)
 #define SPEC_CMS_CONTROL_VARIATE 6   // the control variate (cv, cms)
-#define SPEC_COUNT 7
+#define SPEC_CMS_RELATIVE_WEIGHT 7   // statistics weighted by relative throughput (cms.md §5)
+#define SPEC_COUNT 8
 
 #endif

@@ -1,6 +1,8 @@
 // The spatial cells that share one control variate (cms.md §5, §7): a hashed sparse grid keyed by
-// position (cells along the longest scene axis set by --cells) and by the dominant axis of the
-// shading normal (6 classes), so a floor and the wall beside it never share coefficients.
+// position (cells along the longest scene axis set by --cells), by the dominant axis of the
+// geometric normal (6 classes), so a floor and the wall beside it never share coefficients, and by
+// the material, so a mirror and a rough surface next to it (whose integrands differ most) never
+// do either.
 // Open addressing with linear probing; a slot is claimed with a 64-bit compare-and-swap. When no
 // free slot is found within kCellProbes, the vertex gets no cell: it then simply uses no control
 // variate and contributes no statistics, which keeps the estimator unbiased.
@@ -14,7 +16,8 @@ SHARED_BEGIN_WITH_BUFFERS
 
 const uint kCellProbes = 16u;
 const uint kNoCell = 0xffffffffu;
-const uint kCellCoordBits = 20u;   // up to 2^20 cells per axis
+const uint kCellCoordBits = 16u;     // up to 2^16 cells per axis (--cells allows 4096)
+const uint kCellMaterialBits = 13u;  // materials beyond 8192 share keys modulo 8192 (still unbiased)
 
 struct CellGrid {
   vec3 origin;        // scene bounds minimum
@@ -38,13 +41,15 @@ SHARED_FN uint cellCoordinate(float x) {
   return uint(clamp(floor(x), 0.0f, float((1u << kCellCoordBits) - 1u)));
 }
 
-// Never 0: 0 marks an empty slot.
-SHARED_FN uint64_t cellKey(CellGrid g, vec3 p, vec3 n) {
+// Bits 0-47: cell coordinates; 48-50: normal class + 1 (so never 0: 0 marks an empty slot);
+// 51-63: material.
+SHARED_FN uint64_t cellKey(CellGrid g, vec3 p, vec3 n, uint material) {
   vec3 c = (p - g.origin) * g.invCellSize;
   uint64_t key = uint64_t(cellCoordinate(c.x));
-  key |= uint64_t(cellCoordinate(c.y)) << 20;
-  key |= uint64_t(cellCoordinate(c.z)) << 40;
-  key |= uint64_t(normalClass(n) + 1u) << 60;
+  key |= uint64_t(cellCoordinate(c.y)) << 16;
+  key |= uint64_t(cellCoordinate(c.z)) << 32;
+  key |= uint64_t(normalClass(n) + 1u) << 48;
+  key |= uint64_t(material & ((1u << kCellMaterialBits) - 1u)) << 51;
   return key;
 }
 
@@ -58,9 +63,10 @@ SHARED_FN uint hashCellKey(uint64_t key) {
   return uint(key) ^ uint(key >> 32);
 }
 
-// The slot of the cell holding (p, n): found, or claimed; kNoCell when the probe sequence is full.
-SHARED_FN uint findOrInsertCell(CellGrid g, vec3 p, vec3 n) {
-  uint64_t key = cellKey(g, p, n);
+// The slot of the cell holding (p, n, material): found, or claimed; kNoCell when the probe
+// sequence is full.
+SHARED_FN uint findOrInsertCell(CellGrid g, vec3 p, vec3 n, uint material) {
+  uint64_t key = cellKey(g, p, n, material);
   uint mask = g.tableSize - 1u;
   uint slot = hashCellKey(key) & mask;
   for (uint i = 0u; i < kCellProbes; ++i) {

@@ -24,6 +24,13 @@
 //     when they sum to 0); eps is clamped to [kSolveMinDefensive, 1] so that every cluster with
 //     d_k > 0 keeps c_k > 0 (a light that can never be selected would bias the estimate); c is
 //     normalised to sum 1.
+//   - Statistics persist across iterations (more samples, better alpha) as long as they estimate
+//     the same system. A and b depend on the selection through p_eff, so when the new selection
+//     differs from the one the cell used so far by more than kSelectionChangeThreshold in total
+//     variation (or the cell had no valid selection yet), the cell adopts it and its statistics
+//     and sample count are reset (cms.md §7); otherwise, and while the cell is unsolved, it keeps
+//     the old selection and its statistics keep accumulating. With fixed defaults (no
+//     kSolveLearnSelection) a cell never resets. A non-finite alpha also resets the statistics.
 // Every output is finite for any input.
 #ifndef MIXTRACE_SHARED_CMS_SOLVE_H
 #define MIXTRACE_SHARED_CMS_SOLVE_H
@@ -42,6 +49,10 @@ const float kSolveMinDiagonal = 1.17549435e-38f;
 const float kSolvePivotFloor = 1e-5f;
 // Lower bound of the defensive fraction: keeps c_k > 0 wherever the default is.
 const float kSolveMinDefensive = 1e-3f;
+// Total-variation distance between a cell's new and old selection above which it adopts the new
+// one and restarts its statistics. Smaller changes barely move the variance, and keeping the old
+// selection lets the statistics, and so alpha, keep improving.
+const float kSelectionChangeThreshold = 0.05f;
 
 SHARED_FN bool cmsIsFinite(float x) {
 #ifdef __cplusplus
@@ -71,6 +82,14 @@ SHARED_FN vec3 cmsReadStats3(uint i) {
   return v;
 }
 
+SHARED_FN vec3 cmsReadSolution3(uint i) {
+  vec3 v;
+  v.x = CELL_SOLUTION(i);
+  v.y = CELL_SOLUTION(i + 1u);
+  v.z = CELL_SOLUTION(i + 2u);
+  return v;
+}
+
 SHARED_FN void cmsWriteSolution3(uint i, vec3 v) {
   CELL_SOLUTION(i) = v.x;
   CELL_SOLUTION(i + 1u) = v.y;
@@ -94,6 +113,24 @@ SHARED_FN bool cmsClusterRow(uint stats, uint L, uint k, float sB, float lkk, OU
   lBk = akB * (sk * sB) / lkk;
   zk = bk * (sk / lkk);
   return true;
+}
+
+// The weight of a cluster in a learned selection: its share of the direct light, never negative.
+SHARED_FN float cmsSelectionWeight(vec3 alpha) {
+  float weight = max(luminance(alpha), 0.0f);
+  return cmsIsFinite(weight) ? weight : 0.0f;
+}
+
+// c_k before normalisation: the defaults d (sanitised, normalised) or, when learning,
+// (1 - eps) w_k / sum w + eps d_k with w_k from the alpha just written to the solution.
+SHARED_FN float cmsNewSelection(uint solution, uint L, uint k, bool learn, float eps, float weightSum,
+                                bool uniformDefaults, float defaultSum) {
+  float d = CLUSTER_DEFAULT(k);
+  d = uniformDefaults ? 1.0f / float(L) : ((cmsIsFinite(d) && d > 0.0f) ? d / defaultSum : 0.0f);
+  float c = d;
+  if (learn) c = (1.0f - eps) * (cmsSelectionWeight(cmsReadSolution3(solution + solutionAlpha(L, k, 0u))) / weightSum) + eps * d;
+  if (d > 0.0f) c = max(c, 1e-30f);   // eps * d can underflow for a tiny default
+  return c;
 }
 
 // Solves cell `cell` of the buffers (layouts in shared/cms_layouts.h) and writes its solution.
@@ -138,8 +175,9 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
   }
   vec3 alphaB = yB * sB;
 
-  // Back substitution. Alpha and the selection weights go straight to the solution; the final
-  // pass below zeroes them when the cell turns out unsolved.
+  // Back substitution. Alpha goes straight to the solution (the passes below read it back for the
+  // selection weights, and zero it when the cell turns out unsolved); the selection slots still
+  // hold the cell's old selection.
   bool allFinite = cmsIsFinite3(alphaB);
   float weightSum = 0.0f;
   for (uint k = 0u; k < L; ++k) {
@@ -149,11 +187,8 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
     vec3 alpha = vec3(0.0f);
     if (cmsClusterRow(stats, L, k, sB, lkk, sk, lBk, zk)) alpha = (zk - lBk * yB) * (sk / lkk);
     allFinite = allFinite && cmsIsFinite3(alpha);
-    float weight = max(luminance(alpha), 0.0f);
-    if (!cmsIsFinite(weight)) weight = 0.0f;
-    weightSum += weight;
     cmsWriteSolution3(solution + solutionAlpha(L, k, 0u), alpha);
-    CELL_SOLUTION(solution + solutionSelect(L, k)) = weight;
+    weightSum += cmsSelectionWeight(alpha);
   }
 
   bool solved = CELL_SAMPLES(cell) >= params.minSamples && inSystem > 0u && allFinite;
@@ -169,18 +204,37 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
   bool uniformDefaults = !(defaultSum > 0.0f) || !cmsIsFinite(defaultSum);
   float eps = cmsIsFinite(params.defensive) ? clamp(params.defensive, kSolveMinDefensive, 1.0f) : 1.0f;
 
+  // The new selection (unnormalised here, divided by selectSum), and its distance to the old one.
   float selectSum = 0.0f;
+  float oldSum = 0.0f;
+  bool oldUsable = true;
   for (uint k = 0u; k < L; ++k) {
-    float d = CLUSTER_DEFAULT(k);
-    d = uniformDefaults ? 1.0f / float(L) : ((cmsIsFinite(d) && d > 0.0f) ? d / defaultSum : 0.0f);
-    float c = d;
-    if (learn) c = (1.0f - eps) * (CELL_SOLUTION(solution + solutionSelect(L, k)) / weightSum) + eps * d;
-    if (d > 0.0f) c = max(c, 1e-30f);   // eps * d can underflow for a tiny default
-    CELL_SOLUTION(solution + solutionSelect(L, k)) = c;
-    selectSum += c;
+    selectSum += cmsNewSelection(solution, L, k, learn, eps, weightSum, uniformDefaults, defaultSum);
+    float old = CELL_SOLUTION(solution + solutionSelect(L, k));
+    oldUsable = oldUsable && cmsIsFinite(old) && old >= 0.0f;
+    if (oldUsable) oldSum += old;
+  }
+  float change = 0.0f;
+  for (uint k = 0u; k < L; ++k) {
+    float c = cmsNewSelection(solution, L, k, learn, eps, weightSum, uniformDefaults, defaultSum) / selectSum;
+    float old = CELL_SOLUTION(solution + solutionSelect(L, k));
+    if (oldUsable) change += abs(c - old);
+  }
+  // A cell without a valid selection yet adopts the new one; a solved cell adopts it when it moved
+  // far enough; an unsolved one (too few samples so far) keeps its selection and accumulates on.
+  bool oldValid = oldUsable && abs(oldSum - 1.0f) <= 1e-3f;
+  bool adopt = !oldValid || (solved && !(0.5f * change <= kSelectionChangeThreshold));
+  for (uint k = 0u; k < L; ++k) {
+    if (adopt)
+      CELL_SOLUTION(solution + solutionSelect(L, k)) =
+          cmsNewSelection(solution, L, k, learn, eps, weightSum, uniformDefaults, defaultSum) / selectSum;
     if (!writeAlpha) cmsWriteSolution3(solution + solutionAlpha(L, k, 0u), vec3(0.0f));
   }
-  for (uint k = 0u; k < L; ++k) CELL_SOLUTION(solution + solutionSelect(L, k)) /= selectSum;
+  // Statistics holding NaN/Inf would keep the cell unsolved for good: they restart too.
+  if (adopt || !allFinite) {
+    for (uint i = 0u; i < cellStatsStride(L); ++i) CELL_STATS(stats + i) = 0.0f;
+    CELL_SAMPLES(cell) = 0u;
+  }
 
   cmsWriteSolution3(solution + solutionAlphaB(L, 0u), writeAlpha ? alphaB : vec3(0.0f));
   CELL_SOLUTION(solution + solutionValid(L)) = writeAlpha ? 1.0f : 0.0f;

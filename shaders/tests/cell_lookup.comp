@@ -2,8 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
-// Test kernel: every invocation finds or claims the cell of one (position, normal) pair given by
-// the host (rayOrigin = position, rayDirection = normal) and writes the slot to rngState[i].
+// Test kernel: every invocation finds or claims the cell of one (position, normal, material) given
+// by the host (rayOrigin = position, rayDirection = normal, rngState = material) and writes the
+// slot over the material in rngState[i].
 #include "gpu/buffers.glsl"
 
 layout(scalar, binding = BINDING_CELL_KEYS) buffer CellKeyBuf { uint64_t cellKeys[]; };
@@ -20,5 +21,5 @@ void main() {
   g.origin = pc.gridOrigin;
   g.invCellSize = pc.gridInvCellSize;
   g.tableSize = pc.cellTableSize;
-  rngState[i] = findOrInsertCell(g, rayOrigin[i], rayDirection[i]);
+  rngState[i] = findOrInsertCell(g, rayOrigin[i], rayDirection[i], rngState[i]);
 }

@@ -52,7 +52,7 @@ void main() {
       radiance[path] -= cvThroughput[path] * g / peff;
     }
     if (prevCell != kNoCell) {
-      float w = relativeSampleWeight(cvThroughput[path], film[2u * (pc.pixelOffset + path)]);
+      float w = sampleWeight(cvThroughput[path], path);
       addSampleToA(prevCell, j, pj, prevPdfB, peff, w);
       if (hitEmitter) {
         vec3 f = emittedRadiance(hit.triangle, hit.u, hit.v, -dir) * cvBsdfCos[path];
@@ -92,8 +92,10 @@ void main() {
     grid.origin = pc.gridOrigin;
     grid.invCellSize = pc.gridInvCellSize;
     grid.tableSize = pc.cellTableSize;
-    cell = findOrInsertCell(grid, sh.position, sh.geometricNormal);
-    if (cell != kNoCell) atomicAdd(cellSamples[cell], 1u);
+    cell = findOrInsertCell(grid, sh.position, sh.geometricNormal, sh.material);
+    if (cell != kNoCell) {
+      if (gatheringStatistics()) atomicAdd(cellSamples[cell], 1u);
+    }
     else atomicAdd(queues.verticesWithoutCell, 1u);
     cv = CMS_CONTROL_VARIATE && cellSolutionValid(cell, L);
     if (cv) radiance[path] += beta * cellAlphaSum(cell, L);
@@ -172,7 +174,7 @@ void main() {
     // (cms.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
     if (cv) radiance[path] -= beta * cellAlphaB(cell, L);
     if (CMS_SELECTION && cell != kNoCell)
-      addStat(cell, statsABB(L), relativeSampleWeight(beta, film[2u * (pc.pixelOffset + path)]));
+      addStat(cell, statsABB(L), sampleWeight(beta, path));
     return;
   }
   vec3 bsdfCos = bsdfEval(bsdf, wo, wiLocal) * abs(wiLocal.z);

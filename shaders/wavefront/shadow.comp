@@ -26,7 +26,7 @@ void main() {
   if (!(peff > 0.0)) return;
   if (CMS_CONTROL_VARIATE && cellSolutionValid(s.cell, L))
     radiance[s.path] -= s.throughput * (cellAlpha(s.cell, L, s.cluster) * s.pk + cellAlphaB(s.cell, L) * pB) / peff;
-  float w = relativeSampleWeight(s.throughput, film[2u * (pc.pixelOffset + s.path)]);
+  float w = sampleWeight(s.throughput, s.path);
   addSampleToA(s.cell, s.cluster, s.pk, pB, peff, w);
   if (visible) addSampleToB(s.cell, s.cluster, s.integrand, w * s.pk / (peff * peff), w * pB / (peff * peff));
 }

@@ -53,14 +53,18 @@ TEST(CmsCells, SameCellSameSlotOtherCellsOtherSlots) {
   Table t(1024);
   CellGrid g = grid(4.0f, 1024);  // cells of 0.25
   glm::vec3 up(0, 1, 0);
-  uint32_t a = shared::findOrInsertCell(g, glm::vec3(0.30f, 0.30f, 0.30f), up);
-  uint32_t b = shared::findOrInsertCell(g, glm::vec3(0.45f, 0.26f, 0.49f), up);
-  uint32_t c = shared::findOrInsertCell(g, glm::vec3(0.55f, 0.30f, 0.30f), up);
-  uint32_t wall = shared::findOrInsertCell(g, glm::vec3(0.30f, 0.30f, 0.30f), glm::vec3(1, 0.2f, 0));
+  uint32_t a = shared::findOrInsertCell(g, glm::vec3(0.30f, 0.30f, 0.30f), up, 0);
+  uint32_t b = shared::findOrInsertCell(g, glm::vec3(0.45f, 0.26f, 0.49f), up, 0);
+  uint32_t c = shared::findOrInsertCell(g, glm::vec3(0.55f, 0.30f, 0.30f), up, 0);
+  uint32_t wall = shared::findOrInsertCell(g, glm::vec3(0.30f, 0.30f, 0.30f), glm::vec3(1, 0.2f, 0), 0);
+  uint32_t mirror = shared::findOrInsertCell(g, glm::vec3(0.30f, 0.30f, 0.30f), up, 1);
+  uint32_t far = shared::findOrInsertCell(g, glm::vec3(0.30f, 0.30f, 0.30f), up, 1 + (1 << 13));
   EXPECT_NE(a, shared::kNoCell);
   EXPECT_EQ(a, b) << "points of one cell and normal class share a cell";
   EXPECT_NE(a, c) << "the neighbouring cell";
   EXPECT_NE(a, wall) << "a wall and a floor at the same place";
+  EXPECT_NE(a, mirror) << "two materials at the same place";
+  EXPECT_EQ(mirror, far) << "material indices wrap at 2^13 (sharing a cell stays unbiased)";
   EXPECT_EQ(shared::normalClass(glm::vec3(0, -1, 0)), 3u);
   EXPECT_EQ(shared::normalClass(glm::vec3(0.1f, 0.2f, -0.9f)), 5u);
 }
@@ -68,9 +72,9 @@ TEST(CmsCells, SameCellSameSlotOtherCellsOtherSlots) {
 TEST(CmsCells, PointsOutsideTheBoundsAreClamped) {
   Table t(64);
   CellGrid g = grid(1.0f, 64);
-  uint32_t s = shared::findOrInsertCell(g, glm::vec3(-1e-6f, -5.0f, 1e30f), glm::vec3(0, 0, 1));
+  uint32_t s = shared::findOrInsertCell(g, glm::vec3(-1e-6f, -5.0f, 1e30f), glm::vec3(0, 0, 1), 0);
   EXPECT_NE(s, shared::kNoCell);
-  EXPECT_NE(shared::cellKey(g, glm::vec3(0.0f), glm::vec3(0, 0, 1)), uint64_t(0));
+  EXPECT_NE(shared::cellKey(g, glm::vec3(0.0f), glm::vec3(0, 0, 1), 0), uint64_t(0));
 }
 
 TEST(CmsCells, FullTableDegradesToNoCell) {
@@ -79,7 +83,7 @@ TEST(CmsCells, FullTableDegradesToNoCell) {
   std::set<uint32_t> slots;
   int none = 0;
   for (int i = 0; i < 100; ++i) {
-    uint32_t s = shared::findOrInsertCell(g, glm::vec3(float(i) + 0.5f, 0.5f, 0.5f), glm::vec3(0, 1, 0));
+    uint32_t s = shared::findOrInsertCell(g, glm::vec3(float(i) + 0.5f, 0.5f, 0.5f), glm::vec3(0, 1, 0), 0);
     if (s == shared::kNoCell) ++none;
     else slots.insert(s);
   }
@@ -96,14 +100,18 @@ TEST(CmsCells, GpuInsertionIsConsistentUnderContention) {
   std::mt19937 rng(5);
   std::uniform_int_distribution<int> cell(0, 499);
   std::uniform_real_distribution<float> jitter(0.05f, 0.95f);
+  // Each of the 500 cells is a (position, material) pair: 250 places, 2 materials.
   std::vector<glm::vec3> positions(n), normals(n, glm::vec3(0, 1, 0));
+  std::vector<uint32_t> materials(n);
   std::vector<int> cellOf(n);
   for (uint32_t i = 0; i < n; ++i) {
     cellOf[i] = cell(rng);
-    positions[i] = glm::vec3(float(cellOf[i] % 50) + jitter(rng), float(cellOf[i] / 50) + jitter(rng), jitter(rng));
+    materials[i] = uint32_t(cellOf[i] % 2) * 7u;
+    int place = cellOf[i] / 2;
+    positions[i] = glm::vec3(float(place % 50) + jitter(rng), float(place / 50) + jitter(rng), jitter(rng));
   }
   Buffer p = makeBuffer(ctx, positions, "positions"), nb = makeBuffer(ctx, normals, "normals");
-  Buffer slots(ctx, n * sizeof(uint32_t), "slots");
+  Buffer slots = makeBuffer(ctx, materials, "materials, then slots");
   Buffer keys = makeBuffer(ctx, std::vector<uint64_t>(tableSize, 0), "cell keys");
   set.bind(BINDING_RAY_ORIGIN, p);
   set.bind(BINDING_RAY_DIRECTION, nb);
@@ -128,7 +136,7 @@ TEST(CmsCells, GpuInsertionIsConsistentUnderContention) {
     auto [jt, inserted2] = cellOfSlot.emplace(got[i], cellOf[i]);
     ASSERT_EQ(jt->second, cellOf[i]) << "one slot, one cell";
     // The key the C++ build computes is the key the GPU stored in that slot.
-    EXPECT_EQ(table[got[i]], shared::cellKey(shared::CellGrid{glm::vec3(0.0f), 1.0f, tableSize, 0, 0, 0}, positions[i], normals[i]));
+    EXPECT_EQ(table[got[i]], shared::cellKey(shared::CellGrid{glm::vec3(0.0f), 1.0f, tableSize, 0, 0, 0}, positions[i], normals[i], materials[i]));
   }
   EXPECT_EQ(slotOfCell.size(), 500u);
   EXPECT_EQ(ctx.validationErrors(), 0u);

@@ -32,8 +32,8 @@
 // The solve pass's own source, compiled as C++ over plain arrays (shared dialect): checks it stays
 // valid C++ and lets it be compared with its GPU run.
 namespace cpu_float_solve {
-const float* gStats = nullptr;
-const uint32_t* gSamples = nullptr;
+float* gStats = nullptr;      // the solve resets a cell's statistics when its selection changes
+uint32_t* gSamples = nullptr;
 float* gSolution = nullptr;
 const float* gDefaults = nullptr;
 }  // namespace cpu_float_solve
@@ -854,8 +854,10 @@ TEST_F(CmsSolve, SharedSolveCompiledAsCppAgreesWithTheGpu) {
   params.cellCount = batch.cells();
   std::vector<float> gpu = solveOnGpu(batch, params);
   std::vector<float> cpu(gpu.size(), kSentinel);
-  cpu_float_solve::gStats = batch.stats.data();
-  cpu_float_solve::gSamples = batch.samples.data();
+  std::vector<float> stats = batch.stats;
+  std::vector<uint32_t> samples = batch.samples;
+  cpu_float_solve::gStats = stats.data();
+  cpu_float_solve::gSamples = samples.data();
   cpu_float_solve::gSolution = cpu.data();
   cpu_float_solve::gDefaults = batch.defaults.data();
   for (uint32_t i = 0; i < batch.cells(); ++i) shared::solveCell(i, params);
