@@ -114,7 +114,11 @@ class CmsSolve : public ::testing::Test {
 
   // Solves the batch on the GPU; returns cells * cellSolutionStride(L) floats. One more cell of
   // statistics than asked for is uploaded, and its solution slots must stay untouched.
-  static std::vector<float> solveOnGpu(const Batch& batch, SolveParams params) {
+  // `initial` (optional): the solution buffer before the solve (the cells' previous selections);
+  // `statsAfter`/`samplesAfter` (optional) receive the statistics after it (cells it reset).
+  static std::vector<float> solveOnGpu(const Batch& batch, SolveParams params, const std::vector<float>* initial = nullptr,
+                                       std::vector<float>* statsAfter = nullptr,
+                                       std::vector<uint32_t>* samplesAfter = nullptr) {
     params.clusterCount = batch.L;
     params.cellCount = batch.cells();
     uint32_t solStride = shared::cellSolutionStride(batch.L);
@@ -123,6 +127,7 @@ class CmsSolve : public ::testing::Test {
     std::vector<uint32_t> samples = batch.samples;
     samples.push_back(1000u);
     std::vector<float> solution(size_t(batch.cells() + 1) * solStride, kSentinel);
+    if (initial) std::copy(initial->begin(), initial->end(), solution.begin());
     std::vector<float> defaults = batch.defaults;
     Buffer statsBuf = makeBuffer(*ctx_, stats, "cell stats");
     Buffer samplesBuf = makeBuffer(*ctx_, samples, "cell samples");
@@ -135,6 +140,14 @@ class CmsSolve : public ::testing::Test {
     ctx_->submitAndWait([&](VkCommandBuffer cmd) { solver_->record(cmd, params); });
     std::vector<float> out = solutionBuf.downloadAll<float>();
     out.resize(solution.size());
+    if (statsAfter) {
+      *statsAfter = statsBuf.downloadAll<float>();
+      statsAfter->resize(batch.stats.size());
+    }
+    if (samplesAfter) {
+      *samplesAfter = samplesBuf.downloadAll<uint32_t>();
+      samplesAfter->resize(batch.samples.size());
+    }
     size_t beyond = 0;
     for (size_t i = size_t(batch.cells()) * solStride; i < out.size(); ++i) beyond += bitsOf(out[i]) != bitsOf(kSentinel);
     EXPECT_EQ(beyond, 0u) << "the solve wrote past its last cell";
@@ -806,6 +819,79 @@ TEST_F(CmsSolve, LearnedSelection) {
         EXPECT_NEAR(g.select(k), expected, 1e-6) << where << " c_" << k;
         if (d[k] > 0.0) EXPECT_GT(g.select(k), 0.0) << where;
       }
+    }
+  }
+}
+
+// Statistics persist across iterations: a cell keeps its previous selection (and its statistics)
+// unless it has none yet or, solved, its new selection moved by more than
+// kSelectionChangeThreshold in total variation; then it adopts it and its statistics restart.
+TEST_F(CmsSolve, SelectionPersistsUnlessItMoves) {
+  const uint32_t L = 4;
+  std::vector<float> cell(shared::cellStatsStride(L), 0.0f);
+  const glm::vec3 alpha[L] = {{2, 1, 0.5f}, {1, 1, 1}, {0.1f, 0.1f, 0.1f}, {0.5f, 3, 9}};
+  for (uint32_t k = 0; k < L; ++k) {
+    cell[shared::statsAkk(L, k)] = 1.0f;
+    for (int c = 0; c < 3; ++c) cell[shared::statsBk(L, k, c)] = alpha[k][c];
+  }
+  const SolveParams params = makeParams(L, kBoth, 0.0f, 10, 0.2f);
+  // The selection these statistics learn, from a cell without history.
+  Batch probe(L);
+  probe.add(cell, 100);
+  const std::vector<float> fresh = solveOnGpu(probe, params);
+  std::vector<float> learned(L);
+  for (uint32_t k = 0; k < L; ++k) learned[k] = fresh[shared::solutionSelect(L, k)];
+
+  struct Case {
+    const char* what;
+    std::vector<float> previous;   // empty: no history (NaN)
+    uint32_t samples;
+    uint32_t flags;
+    bool adopt;
+  };
+  std::vector<float> nearby = learned;   // moved by 0.02 in total variation
+  nearby[0] += 0.02f;
+  nearby[3] -= 0.02f;
+  std::vector<float> far = {0.25f, 0.25f, 0.25f, 0.25f};
+  const Case cases[] = {
+      {"small move: keeps", nearby, 100, kBoth, false},
+      {"large move: adopts", far, 100, kBoth, true},
+      {"no history: adopts", {}, 100, kBoth, true},
+      {"unsolved (too few samples): keeps", {0.7f, 0.1f, 0.1f, 0.1f}, 5, kBoth, false},
+      {"fixed selection (cv): keeps", far, 100, shared::kSolveControlVariate, false},
+      {"not normalised: adopts", {0.5f, 0.5f, 0.5f, 0.5f}, 100, kBoth, true},
+  };
+  Batch batch(L);
+  std::vector<float> initial;
+  for (const Case& cs : cases) {
+    batch.add(cell, cs.samples);
+    std::vector<float> s(shared::cellSolutionStride(L), kSentinel);
+    for (uint32_t k = 0; k < cs.previous.size(); ++k) s[shared::solutionSelect(L, k)] = cs.previous[k];
+    initial.insert(initial.end(), s.begin(), s.end());
+  }
+  // One flag set per dispatch: solve the cells of each flag set separately and keep their rows.
+  for (uint32_t flags : {kBoth, uint32_t(shared::kSolveControlVariate)}) {
+    SolveParams p = params;
+    p.flags = flags;
+    std::vector<float> statsAfter;
+    std::vector<uint32_t> samplesAfter;
+    std::vector<float> gpu = solveOnGpu(batch, p, &initial, &statsAfter, &samplesAfter);
+    for (uint32_t i = 0; i < batch.cells(); ++i) {
+      const Case& cs = cases[i];
+      if (cs.flags != flags) continue;
+      GpuCell g = gpuCell(gpu, L, i);
+      const float* previous = cs.previous.empty() ? nullptr : &initial[size_t(i) * shared::cellSolutionStride(L) + shared::solutionSelect(L, 0)];
+      CellSolution ref = solveCellReference(batch.cell(i), cs.samples, L, p, batch.defaults.data(), previous);
+      EXPECT_EQ(ref.resetStatistics, cs.adopt) << cs.what;
+      bool reset = samplesAfter[i] == 0;
+      for (uint32_t j = 0; j < batch.stride(); ++j) reset = reset && statsAfter[size_t(i) * batch.stride() + j] == 0.0f;
+      EXPECT_EQ(reset, cs.adopt) << cs.what << ": statistics " << (reset ? "reset" : "kept");
+      for (uint32_t k = 0; k < L; ++k) {
+        EXPECT_NEAR(g.select(k), ref.select[k], 1e-6) << cs.what << " c_" << k;
+        if (!cs.adopt) EXPECT_EQ(g.select(k), cs.previous[k]) << cs.what << ": the previous selection stays, exactly";
+      }
+      if (cs.adopt && (flags & shared::kSolveLearnSelection))
+        for (uint32_t k = 0; k < L; ++k) EXPECT_NEAR(g.select(k), learned[k], 1e-6) << cs.what;
     }
   }
 }

@@ -222,6 +222,21 @@ TEST_F(RenderedImages, JsonReportHoldsTheResult) {
   EXPECT_EQ(j["summary"].get<std::string>() + "\n", cli.out);
 }
 
+// --error-only: just the relMSE of A against B, for images without variance channels too.
+TEST_F(RenderedImages, ErrorOnlyPrintsTheRelMse) {
+  const CliResult cli = runCompare(oneLightMissing().path + " " + allLights().path + " --error-only");
+  EXPECT_EQ(cli.exitCode, 0) << cli.err;
+  const double expected = relativeMse(oneLightMissing().mean, allLights().mean);
+  ASSERT_EQ(cli.out.rfind("relMSE ", 0), 0u) << cli.out;
+  EXPECT_NEAR(std::stod(cli.out.substr(7)), expected, 1e-5 * expected);
+  EXPECT_GT(expected, 0.0);
+  const fs::path plain = dir() / "no_variance.exr";
+  writeExr(plain.string(), allLights().mean, ExrMetadata{});
+  const CliResult same = runCompare(plain.string() + " " + allLights().path + " --error-only");
+  EXPECT_EQ(same.exitCode, 0) << same.err;
+  EXPECT_EQ(same.out, "relMSE 0\n");
+}
+
 TEST_F(RenderedImages, CliInputErrorsExitWithTwo) {
   const auto expectError = [](const CliResult& r, const std::string& needle) {
     EXPECT_EQ(r.exitCode, 2) << r.err;

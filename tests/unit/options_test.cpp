@@ -56,6 +56,13 @@ TEST(Options, RenderDefaults) {
   EXPECT_FALSE(o.validation);
   EXPECT_FALSE(o.generalPipelines);
   EXPECT_FALSE(o.variance);
+  EXPECT_TRUE(o.relativeWeighting);
+}
+
+TEST(Options, RelativeWeightingOnOff) {
+  EXPECT_FALSE(parse({"render", "--relative-weighting", "off"}).render.relativeWeighting);
+  EXPECT_TRUE(parse({"render", "--relative-weighting=on"}).render.relativeWeighting);
+  expectOneLineMentioning(errorOf({"render", "--relative-weighting", "maybe"}), "--relative-weighting");
 }
 
 TEST(Options, EveryOptionWithSeparateValues) {
@@ -226,6 +233,8 @@ TEST(Options, CompareDefaultsAndEveryOption) {
   EXPECT_LT(parsed.compare.maxFailFraction, 0.0);
   EXPECT_EQ(parsed.compare.reportJson, "");
   EXPECT_FALSE(parsed.compare.quiet);
+  EXPECT_FALSE(parsed.compare.errorOnly);
+  EXPECT_TRUE(parse({"compare", "a.exr", "b.exr", "--error-only"}).compare.errorOnly);
 
   parsed = parse({"compare", "--alpha", "0.05", "a.exr", "--json=r.json", "-q", "b.exr", "--max-fail-fraction", "0.002"});
   ASSERT_EQ(parsed.command, Command::Compare);
