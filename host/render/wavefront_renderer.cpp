@@ -59,6 +59,7 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   if (s.maxDepth < 1) throw Error("--max-depth must be at least 1");
   if (s.cms.clusters && !cms) throw Error("internal: a CMS method without light clusters");
   scene_.bindTo(set_);
+  sceneScale_ = scene.scene.bounds.magnitude();
   // CMS buffers (placeholders of one element for the other methods, so every binding is valid).
   const bool useCms = s.cms.clusters && cms && !cms->clusters.clusters.empty();
   clusterCount_ = useCms ? uint32_t(cms->clusters.clusters.size()) : 1;
@@ -181,6 +182,7 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   pc.cellTableSize = cellTableSize_;
   pc.gridOrigin = gridOrigin_;
   pc.gridInvCellSize = gridInvCellSize_;
+  pc.sceneScale = sceneScale_;
 
   dispatch(cmd, *generate_, pc, groupsFor(paths));
   for (uint32_t depth = 1; depth <= settings_.maxDepth; ++depth) {

@@ -60,3 +60,4 @@ layout(scalar, binding = BINDING_CLUSTER_DEFAULTS) readonly buffer ClusterDefaul
 #define TEXEL(i) texels[i]
 #define LIGHT(i) lights[i]
 #define EMITTER(i) emitters[i]
+#define SCENE_SCALE() pc.sceneScale
