@@ -4,6 +4,7 @@
 // many vertices of one cell add at once. Included by the shade and shadow stages, after
 // gpu/buffers.glsl and gpu/cms_buffers.glsl.
 #include "shared/cms_cells.h"
+#include "shared/cms_sampling.h"
 #include "shared/cms_layouts.h"
 
 // Whether this sample's vertices add to the statistics. With relative weighting the first sample
@@ -41,4 +42,19 @@ void addSampleToB(uint cell, uint k, vec3 f, float scaleK, float scaleB) {
     if (k != kNoCell) addStat(cell, statsBk(L, k, c), f[c] * scaleK);
     addStat(cell, statsBB(L, c), f[c] * scaleB);
   }
+}
+
+// The control-variate and statistics terms of a light sample once its visibility is known (the
+// shadow pass) or known not to matter (a hidden point, in the shade pass): the point z on cluster
+// k has density c_k p_k from light sampling and pB from BSDF sampling (0 when hidden or blocked),
+// integrand f (0 when blocked), at a vertex of `cell` with throughput `beta` on path `path`.
+void settleLightSample(uint cell, uint k, float pk, float ck, float pB, vec3 f, vec3 beta, uint path) {
+  uint L = pc.clusterCount;
+  float peff = ck * pk + pB;
+  if (!(peff > 0.0)) return;
+  if (CMS_CONTROL_VARIATE && cellSolutionValid(cell, L))
+    radiance[path] -= beta * (cellAlpha(cell, L, k) * pk + cellAlphaB(cell, L) * pB) / peff;
+  float w = sampleWeight(beta, path);
+  addSampleToA(cell, k, pk, pB, peff, w);
+  if (!isBlack(f)) addSampleToB(cell, k, f, w * pk / (peff * peff), w * pB / (peff * peff));
 }

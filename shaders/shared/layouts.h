@@ -130,11 +130,10 @@ struct ShadowRay {
   float pk;            // CMS: p_k(z) of the light sample
   float pB;            // CMS: p_B(z) if the point is visible
   float ck;            // CMS: c_k of the vertex's cell
-  uint flags;          // kShadowRayCms: pay the CMS terms; kShadowRayHidden: known hidden, skip the trace
+  uint flags;          // kShadowRayCms: pay the CMS terms
   float pad;
 };
 const uint kShadowRayCms = 1u;
-const uint kShadowRayHidden = 2u;
 
 // Queue counters and indirect dispatch arguments, in one buffer.
 struct DispatchArgs {

@@ -31,6 +31,7 @@ void main() {
   uint L = pc.clusterCount;
   float prevPdfB = misPdf[path];   // p_B of the BSDF sample that made this ray; 0 for camera rays
   bool hitEmitter = hit.triangle != kNoHit && HAS_AREA_LIGHTS && triangleShading[hit.triangle].emitter >= 0;
+  vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -dir) : vec3(0.0);
   SurfaceHit sh;
   if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, dir);
 
@@ -40,7 +41,9 @@ void main() {
     uint prevCell = cvCell[path];
     uint j = kNoCell;
     float pj = 0.0;
-    if (hitEmitter) {
+    // A light point that emits nothing towards the vertex (a one-sided emitter's back) counts as
+    // no light point at all, for BSDF and light samples alike (see the light sample below).
+    if (!isBlack(le)) {
       j = lights[lightOfTriangle(hit.triangle)].cluster;
       pj = clusterPointPdf(hit.triangle, rayOrigin[path], sh.position);
     }
@@ -54,10 +57,7 @@ void main() {
     if (prevCell != kNoCell) {
       float w = sampleWeight(cvThroughput[path], path);
       addSampleToA(prevCell, j, pj, prevPdfB, peff, w);
-      if (hitEmitter) {
-        vec3 f = emittedRadiance(hit.triangle, hit.u, hit.v, -dir) * cvBsdfCos[path];
-        addSampleToB(prevCell, j, f, w * pj / (peff * peff), w * prevPdfB / (peff * peff));
-      }
+      if (j != kNoCell) addSampleToB(prevCell, j, le * cvBsdfCos[path], w * pj / (peff * peff), w * prevPdfB / (peff * peff));
     }
   }
   if (hit.triangle == kNoHit) return;   // no environment light: the path ends
@@ -65,7 +65,6 @@ void main() {
 
   // Emission reached by this ray.
   if (hitEmitter) {
-    vec3 le = emittedRadiance(hit.triangle, hit.u, hit.v, -dir);
     float w = 1.0;
     if (prevPdfB > 0.0) {
       if (CMS_SELECTION) {
@@ -132,15 +131,22 @@ void main() {
         pk = 1.0;
         ls.pdf = clusterSelectPmf(cell, L, k);
       }
-      float pB = (ls.isDelta || !above) ? 0.0 : bsdfPdf(bsdf, wo, wi);
+      // A point below the surface is hidden by the surface itself. A point that emits nothing
+      // towards this vertex (a one-sided emitter's back, a spot's outside) is, for controlled
+      // mixture sampling, a hidden point too, whatever lies between: the BSDF sample treats such
+      // a hit as no light either (above), so each technique's density stays the density of its
+      // own samples and every term stays unbiased, and no shadow ray is needed.
+      bool reachable = above && carries;
+      float pB = (ls.isDelta || !reachable) ? 0.0 : bsdfPdf(bsdf, wo, wi);
       float peff = ls.pdf + pB;
       vec3 f = vec3(0.0);
-      if (carries && above) f = bsdfEval(bsdf, wo, wi) * abs(wi.z) * ls.radiance;
+      if (reachable) f = bsdfEval(bsdf, wo, wi) * abs(wi.z) * ls.radiance;
       vec3 contribution = beta * f / peff;
-      // CMS: whether the BSDF could have sampled this point (p_B) depends on its visibility, so the
-      // sample's control-variate and statistics terms go with the shadow ray. A point below the
-      // surface is hidden by the surface itself and needs no trace.
-      if (!isBlack(contribution) || cmsTerms) {
+      if (cmsTerms && !reachable) {
+        settleLightSample(cell, k, pk, ls.pdf / max(pk, 1e-38), 0.0, f, beta, path);
+      } else if (!isBlack(contribution) || cmsTerms) {
+        // CMS: whether the BSDF could have sampled this point (p_B) depends on its visibility, so
+        // the sample's control-variate and statistics terms go with the shadow ray.
         ShadowRay s;
         s.origin = origin;
         shadowRay(origin, ls, s.direction, s.tMax);
@@ -153,7 +159,7 @@ void main() {
         s.pk = pk;
         s.pB = pB;
         s.ck = ls.pdf / max(pk, 1e-38);
-        s.flags = (cmsTerms ? kShadowRayCms : 0u) | (above ? 0u : kShadowRayHidden);
+        s.flags = cmsTerms ? kShadowRayCms : 0u;
         s.pad = 0.0;
         uint slot = atomicAdd(queues.shadowCount, 1u);
         shadowQueue[slot] = s;

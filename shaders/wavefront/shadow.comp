@@ -16,17 +16,8 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= queues.shadowCount) return;
   ShadowRay s = shadowQueue[i];
-  bool visible = (s.flags & kShadowRayHidden) == 0u && !traceAny(s.origin, s.direction, s.tMax);
+  bool visible = !traceAny(s.origin, s.direction, s.tMax);
   if (visible) radiance[s.path] += s.contribution;
-  if (!CMS_SELECTION || (s.flags & kShadowRayCms) == 0u) return;
-  // A hidden light point cannot be reached by the BSDF: there p_B = 0 and p_eff = c_k p_k.
-  uint L = pc.clusterCount;
-  float pB = visible ? s.pB : 0.0;
-  float peff = s.ck * s.pk + pB;
-  if (!(peff > 0.0)) return;
-  if (CMS_CONTROL_VARIATE && cellSolutionValid(s.cell, L))
-    radiance[s.path] -= s.throughput * (cellAlpha(s.cell, L, s.cluster) * s.pk + cellAlphaB(s.cell, L) * pB) / peff;
-  float w = sampleWeight(s.throughput, s.path);
-  addSampleToA(s.cell, s.cluster, s.pk, pB, peff, w);
-  if (visible) addSampleToB(s.cell, s.cluster, s.integrand, w * s.pk / (peff * peff), w * pB / (peff * peff));
+  if (CMS_SELECTION && (s.flags & kShadowRayCms) != 0u)
+    settleLightSample(s.cell, s.cluster, s.pk, s.ck, visible ? s.pB : 0.0, visible ? s.integrand : vec3(0.0), s.throughput, s.path);
 }
