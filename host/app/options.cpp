@@ -144,6 +144,10 @@ const RenderOptionSpec kOptionSpecs[] = {
      [](RenderOptions& o, const std::string& n, const std::string& v) {
        o.relativeWeighting = oneOf(n, v, {"on", "off"}, "setting") == "on";
      }},
+    {"--float-atomics", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) {
+       o.floatAtomics = oneOf(n, v, {"on", "off"}, "setting") == "on";
+     }},
     {"--stats", nullptr, true, [](RenderOptions& o, const std::string&, const std::string& v) { o.statsPath = v; }},
     {"--device", nullptr, true, [](RenderOptions& o, const std::string&, const std::string& v) { o.device = v; }},
     {"--no-png", nullptr, false, [](RenderOptions& o, const std::string&, const std::string&) { o.png = false; }},
@@ -360,6 +364,10 @@ std::string helpText() {
           "  --relative-weighting on|off\n"
           "                       learned/cv/cms: weight the cells' statistics by\n"
           "                       path throughput relative to the pixel (default: on)\n"
+          "  --float-atomics on|off\n"
+          "                       learned/cv/cms on Vulkan: add the statistics with\n"
+          "                       float atomics (on, where the device has them) or\n"
+          "                       compare-and-swap loops (default: on)\n"
           "  --method NAME        light transport method (default: "
        << defaults.method << "):\n";
   for (const std::string& method : kMethods) {

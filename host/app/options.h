@@ -37,6 +37,7 @@ struct RenderOptions {
   int maxClusters = 16;          // --max-clusters: CMS light clusters (techniques), 1..32
   int cells = 16;                // --cells: CMS cells along the longest scene axis
   bool relativeWeighting = true; // --relative-weighting on|off: CMS statistics weighting (cms.md §5)
+  bool floatAtomics = true;      // --float-atomics on|off: CMS statistics with float atomics or CAS loops
 };
 
 // `mixtrace compare`: a statistical test of whether two renders (written with --variance) estimate

@@ -69,6 +69,7 @@ int runRender(const RenderOptions& o) {
   settings.cms = cmsMethodFor(o.method);
   settings.cells = uint32_t(o.cells);
   settings.relativeWeighting = o.relativeWeighting;
+  settings.floatAtomics = o.floatAtomics;
   CmsScene cms;
   if (settings.cms.clusters) cms = setUpClusters(prepared, uint32_t(o.maxClusters), settings.cms.defaults);
   std::unique_ptr<VulkanContext> ctx;
@@ -138,6 +139,7 @@ int runRender(const RenderOptions& o) {
   stats.cmsCellTableSize = counters.cellTableSize;
   stats.cmsVerticesWithoutCell = counters.verticesWithoutCell;
   stats.cmsClusters = uint32_t(cms.clusters.clusters.size());
+  stats.cmsAtomics = counters.statisticsAtomics;
   stats.validationErrors = ctx ? ctx->validationErrors() : 0;
   stats.passMs = renderer.passTimesMs();
 

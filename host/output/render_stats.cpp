@@ -44,6 +44,7 @@ void writeStatsJson(const std::string& path, const RenderStats& s) {
     j["cms_cells_used"] = s.cmsCellsUsed;
     j["cms_cell_table_size"] = s.cmsCellTableSize;
     j["cms_vertices_without_cell"] = s.cmsVerticesWithoutCell;
+    if (!s.cmsAtomics.empty()) j["cms_statistics_atomics"] = s.cmsAtomics;
   }
   j["validation_errors"] = s.validationErrors;
   nlohmann::json passes = nlohmann::json::object();

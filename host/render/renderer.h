@@ -25,6 +25,7 @@ struct RenderSettings {
   float ridge = 1e-3f;           // Tikhonov term of the solve, relative to the scaled diagonal
   float defensive = 0.2f;        // share of the default selection in a learned c_k
   bool relativeWeighting = true; // statistics weighted by throughput relative to the pixel (cms.md §5)
+  bool floatAtomics = true;      // Vulkan: float atomics for the statistics where the device has them
 };
 
 struct RenderCounters {
@@ -34,6 +35,7 @@ struct RenderCounters {
   uint64_t cellsUsed = 0;             // CMS: cells of the table that vertices fell into
   uint64_t cellTableSize = 0;         // CMS: slots of the table
   uint64_t verticesWithoutCell = 0;   // CMS: vertices refused by a full table (they get no CV)
+  std::string statisticsAtomics;      // CMS on Vulkan: "float" atomics or "cas" loops
 };
 
 class Renderer {

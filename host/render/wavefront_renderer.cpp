@@ -116,8 +116,10 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   generate_ = std::make_unique<ComputePipeline>(ctx, "generate", layout, spec);
   prepare_ = std::make_unique<ComputePipeline>(ctx, "prepare", layout, spec);
   intersect_ = std::make_unique<ComputePipeline>(ctx, "intersect", layout, spec);
-  shade_ = std::make_unique<ComputePipeline>(ctx, "shade", layout, spec);
-  shadow_ = std::make_unique<ComputePipeline>(ctx, "shadow", layout, spec);
+  // Without float atomics (or when asked) the statistics go through compare-and-swap loops.
+  casAtomics_ = useCms && !(s.floatAtomics && ctx.floatAtomics());
+  shade_ = std::make_unique<ComputePipeline>(ctx, casAtomics_ ? "shade_cas" : "shade", layout, spec);
+  shadow_ = std::make_unique<ComputePipeline>(ctx, casAtomics_ ? "shadow_cas" : "shadow", layout, spec);
   accumulate_ = std::make_unique<ComputePipeline>(ctx, "accumulate", layout, spec);
 
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -285,6 +287,7 @@ RenderCounters WavefrontRenderer::counters() const {
   if (solver_) {
     c.verticesWithoutCell = q.verticesWithoutCell;
     c.cellTableSize = cellTableSize_;
+    c.statisticsAtomics = casAtomics_ ? "cas" : "float";
     for (uint64_t key : cellKeys_.downloadAll<uint64_t>()) c.cellsUsed += key != 0;
   }
   return c;

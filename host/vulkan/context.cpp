@@ -67,16 +67,20 @@ bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
   return false;
 }
 
-// The features the shaders rely on; a device without them cannot run mixtrace. Float atomics
-// accumulate the CMS cell statistics (VK_EXT_shader_atomic_float, on lavapipe and the common GPU
-// drivers).
-bool supportsRequiredFeatures(VkPhysicalDevice pd, std::string* missing) {
-  if (!hasDeviceExtension(pd, VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME)) { *missing = "float atomics"; return false; }
+// Float atomics (VK_EXT_shader_atomic_float) for the CMS cell statistics: optional.
+bool supportsFloatAtomics(VkPhysicalDevice pd) {
+  if (!hasDeviceExtension(pd, VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME)) return false;
   VkPhysicalDeviceShaderAtomicFloatFeaturesEXT af{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
-  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &af};
+  VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &af};
+  vkGetPhysicalDeviceFeatures2(pd, &f);
+  return af.shaderBufferFloat32AtomicAdd == VK_TRUE;
+}
+
+// The features the shaders rely on; a device without them cannot run mixtrace.
+bool supportsRequiredFeatures(VkPhysicalDevice pd, std::string* missing) {
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
   vkGetPhysicalDeviceFeatures2(pd, &f);
-  if (!af.shaderBufferFloat32AtomicAdd) { *missing = "float atomics"; return false; }
   if (!f12.scalarBlockLayout) { *missing = "scalarBlockLayout"; return false; }
   if (!f.features.shaderInt64 || !f12.shaderBufferInt64Atomics) { *missing = "64-bit integer atomics"; return false; }
   return true;
@@ -162,9 +166,10 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   qci.queueCount = 1;
   qci.pQueuePriorities = &priority;
   // Scalar block layout: one struct layout for C++ and GLSL. 64-bit atomics: the CMS cell table.
+  floatAtomics_ = supportsFloatAtomics(physical_);
   VkPhysicalDeviceShaderAtomicFloatFeaturesEXT af{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
   af.shaderBufferFloat32AtomicAdd = VK_TRUE;
-  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &af};
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, floatAtomics_ ? &af : nullptr};
   f12.scalarBlockLayout = VK_TRUE;
   f12.shaderBufferInt64Atomics = VK_TRUE;
   VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
@@ -174,7 +179,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
   const char* deviceExtensions[] = {VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME};
-  dci.enabledExtensionCount = 1;
+  dci.enabledExtensionCount = floatAtomics_ ? 1 : 0;
   dci.ppEnabledExtensionNames = deviceExtensions;
   vkCheck(vkCreateDevice(physical_, &dci, nullptr, &device_), "vkCreateDevice");
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);

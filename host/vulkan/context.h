@@ -31,6 +31,9 @@ class VulkanContext {
   bool timestampsSupported() const { return timestampValidBits_ > 0; }
   uint64_t maxStorageBufferRange() const { return properties_.limits.maxStorageBufferRange; }
   uint64_t deviceLocalBytes() const { return deviceLocalBytes_; }
+  // VK_EXT_shader_atomic_float's shaderBufferFloat32AtomicAdd (enabled when present); without it
+  // the CMS statistics are added with compare-and-swap loops.
+  bool floatAtomics() const { return floatAtomics_; }
 
   // Validation messages of severity error seen so far (0 when validation is off).
   uint32_t validationErrors() const;
@@ -48,6 +51,7 @@ class VulkanContext {
   VkQueue queue_ = VK_NULL_HANDLE;
   uint32_t queueFamily_ = 0;
   uint32_t timestampValidBits_ = 0;
+  bool floatAtomics_ = false;
   uint64_t deviceLocalBytes_ = 0;
   VkCommandPool commandPool_ = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties_{};

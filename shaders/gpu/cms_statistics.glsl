@@ -20,9 +20,26 @@ float sampleWeight(vec3 beta, uint path) {
   return CMS_RELATIVE_WEIGHT ? relativeSampleWeight(beta, pixelEstimate[pc.pixelOffset + path]) : 1.0;
 }
 
+#ifdef CMS_CAS_ATOMICS
+// Without float atomics: a compare-and-swap loop on the bits, through a uint view of the same
+// buffer (the variants shade_cas and shadow_cas; --float-atomics off).
+layout(scalar, binding = BINDING_CELL_STATS) buffer CellStatsBits { uint cellStatsBits[]; };
+
+void addStat(uint cell, uint index, float value) {
+  if (value == 0.0) return;
+  uint i = cell * cellStatsStride(pc.clusterCount) + index;
+  uint seen = cellStatsBits[i];
+  for (;;) {
+    uint expected = seen;
+    seen = atomicCompSwap(cellStatsBits[i], expected, floatBitsToUint(uintBitsToFloat(expected) + value));
+    if (seen == expected) break;
+  }
+}
+#else
 void addStat(uint cell, uint index, float value) {
   if (value != 0.0) atomicAdd(cellStats[cell * cellStatsStride(pc.clusterCount) + index], value);
 }
+#endif
 
 // k = kNoCell: the sample lies in no cluster's support (a BSDF sample that hit no light).
 void addSampleToA(uint cell, uint k, float pk, float pB, float peff, float w) {

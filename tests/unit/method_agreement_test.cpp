@@ -4,6 +4,8 @@
 // Per-pixel z-test with both variances; Bonferroni-style threshold on the fraction failing.
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 
@@ -78,3 +80,30 @@ TEST_P(CmsAgreement, LearnedCvAndCmsAgreeWithTheBaseline) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CmsAgreement, ::testing::ValuesIn(shippedScenes()),
                          [](const auto& info) { return sceneStem(info.param); });
+
+// Without float atomics (compare-and-swap loops, the path for devices that lack
+// VK_EXT_shader_atomic_float) the statistics, hence the images, are those of the float-atomic
+// build: cms still agrees with the baseline, and the stats say which path ran.
+TEST(CmsStatisticsAtomics, CompareAndSwapLoopsAgreeWithTheBaseline) {
+  fs::path dir = scratchDir("cms-cas");
+  const std::string scene = (fs::path(MIXTRACE_SOURCE_DIR) / "scenes" / "many_lights.gltf").string();
+  const std::string size = "--width 48 --height 36 --spp 256";
+  Image variance[2], mean[2];
+  const char* methods[2] = {"pt-uniform", "cms --float-atomics off"};
+  for (int m = 0; m < 2; ++m) {
+    fs::path out = dir / ("m" + std::to_string(m) + ".exr");
+    fs::path stats = dir / ("m" + std::to_string(m) + ".json");
+    RunResult r = runMixtrace("render " + scene + " " + size + " --method " + methods[m] + " --seed " +
+                              std::to_string(m + 1) + " --variance -q --no-png --out " + out.string() + " --stats " +
+                              stats.string(), "", 3000);
+    ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+    mean[m] = readExr(out.string(), nullptr, &variance[m]);
+    if (m == 1) {
+      std::ifstream in(stats);
+      std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      EXPECT_NE(text.find("\"cms_statistics_atomics\": \"cas\""), std::string::npos) << text;
+    }
+  }
+  ComparisonResult r = compareImages(mean[1], variance[1], mean[0], variance[0]);
+  EXPECT_TRUE(r.agree) << r.summary();
+}

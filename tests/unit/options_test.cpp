@@ -57,12 +57,15 @@ TEST(Options, RenderDefaults) {
   EXPECT_FALSE(o.generalPipelines);
   EXPECT_FALSE(o.variance);
   EXPECT_TRUE(o.relativeWeighting);
+  EXPECT_TRUE(o.floatAtomics);
 }
 
 TEST(Options, RelativeWeightingOnOff) {
   EXPECT_FALSE(parse({"render", "--relative-weighting", "off"}).render.relativeWeighting);
   EXPECT_TRUE(parse({"render", "--relative-weighting=on"}).render.relativeWeighting);
   expectOneLineMentioning(errorOf({"render", "--relative-weighting", "maybe"}), "--relative-weighting");
+  EXPECT_FALSE(parse({"render", "--float-atomics", "off"}).render.floatAtomics);
+  expectOneLineMentioning(errorOf({"render", "--float-atomics", "no"}), "--float-atomics");
 }
 
 TEST(Options, EveryOptionWithSeparateValues) {
