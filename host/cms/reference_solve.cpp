@@ -107,11 +107,15 @@ CellSolution solveCellReference(const float* stats, uint32_t samples, uint32_t L
   std::vector<glm::dvec3> alpha(L, glm::dvec3(0.0));
   glm::dvec3 alphaB(0.0);
   bool allFinite = true;
+  glm::dvec3 alphaSum(0.0);
   for (size_t i = 0; i < techniques.size(); ++i) {
     out.inSystem[techniques[i]] = true;
     (techniques[i] == L ? alphaB : alpha[techniques[i]]) = solved[i];
     allFinite = allFinite && fitsFloat(solved[i]);
+    alphaSum += solved[i];
   }
+  for (int c = 0; c < 3; ++c)   // every vertex adds the sum (bound: shared/cms_solve.h)
+    allFinite = allFinite && std::abs(alphaSum[c]) <= double(shared::kSolveMaxAlphaSum);
   out.solved = samples >= params.minSamples && !techniques.empty() && allFinite;
   out.valid = out.solved && (params.flags & shared::kSolveControlVariate) != 0;
   if (out.valid) {

@@ -31,11 +31,14 @@ SHARED_FN uint statsBB(uint L, uint channel) { return 5u * L + 1u + channel; }
 //   [3L, 3L+3)        alpha_B, RGB
 //   [3L+3, 4L+3)      selection pmf c_k over clusters (sums to 1)
 //   4L+3              1 when alpha is valid for this cell (else the cell uses no control variate)
-SHARED_FN uint cellSolutionStride(uint L) { return 4u * L + 4u; }
+//   [4L+4, 4L+7)      sum_k alpha_k + alpha_B, RGB: the control variate's integral, added at every
+//                     vertex (stored so the shade pass reads 3 floats, not 3L+3)
+SHARED_FN uint cellSolutionStride(uint L) { return 4u * L + 7u; }
 SHARED_FN uint solutionAlpha(uint L, uint k, uint channel) { return 3u * k + channel; }
 SHARED_FN uint solutionAlphaB(uint L, uint channel) { return 3u * L + channel; }
 SHARED_FN uint solutionSelect(uint L, uint k) { return 3u * L + 3u + k; }
 SHARED_FN uint solutionValid(uint L) { return 4u * L + 3u; }
+SHARED_FN uint solutionAlphaSum(uint L, uint channel) { return 4u * L + 4u + channel; }
 
 // Solve pass flags (SolveParams.flags).
 const uint kSolveLearnSelection = 1u;   // write learned c_k (methods learned, cms); else the defaults

@@ -71,11 +71,12 @@ SHARED_FN vec3 cellAlphaB(uint cell, uint L) {
               CELL_SOLUTION(base + solutionAlphaB(L, 2u)));
 }
 
-// The integral of the control variate: sum_k alpha_k + alpha_B (each density integrates to 1).
+// The integral of the control variate: sum_k alpha_k + alpha_B (each density integrates to 1),
+// as the solve stored it.
 SHARED_FN vec3 cellAlphaSum(uint cell, uint L) {
-  vec3 sum = cellAlphaB(cell, L);
-  for (uint k = 0u; k < L; ++k) sum += cellAlpha(cell, L, k);
-  return sum;
+  uint base = cell * cellSolutionStride(L);
+  return vec3(CELL_SOLUTION(base + solutionAlphaSum(L, 0u)), CELL_SOLUTION(base + solutionAlphaSum(L, 1u)),
+              CELL_SOLUTION(base + solutionAlphaSum(L, 2u)));
 }
 
 SHARED_END_WITH_BUFFERS

@@ -14,7 +14,7 @@
 //     (singular or nearly so: B is a combination of the clusters) drops B; the clusters then
 //     decouple. Factored once, solved for the three RGB right-hand sides.
 //   - The cell is solved when it has at least minSamples samples, at least one technique in the
-//     system and a finite alpha everywhere. Unsolved cells write alpha = 0, valid = 0.
+//     system, a finite alpha everywhere and |sum of alpha| <= kSolveMaxAlphaSum. Unsolved cells write alpha = 0, valid = 0.
 //   - With kSolveControlVariate the solved alpha is written and valid = 1; without it alpha = 0
 //     and valid = 0, but the solve still runs: its alpha feeds the learned selection ("learned"
 //     method, selection without a control variate).
@@ -47,6 +47,8 @@ const float kSolveMinDiagonal = 1.17549435e-38f;
 // fraction of 1 + ridge means B is (numerically) a combination of the clusters: B is dropped.
 // Float cancellation in 1 + ridge - sum L_Bk^2 is ~1e-6 for L = 32, so smaller pivots are noise.
 const float kSolvePivotFloor = 1e-5f;
+// Largest |sum of alpha| (per channel) a solved cell may have; radiance beyond is not physical.
+const float kSolveMaxAlphaSum = 1e30f;
 // Lower bound of the defensive fraction: keeps c_k > 0 wherever the default is.
 const float kSolveMinDefensive = 1e-3f;
 // Total-variation distance between a cell's new and old selection above which it adopts the new
@@ -180,6 +182,7 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
   // hold the cell's old selection.
   bool allFinite = cmsIsFinite3(alphaB);
   float weightSum = 0.0f;
+  vec3 alphaSum = alphaB;
   for (uint k = 0u; k < L; ++k) {
     float sk;
     float lBk;
@@ -189,7 +192,11 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
     allFinite = allFinite && cmsIsFinite3(alpha);
     cmsWriteSolution3(solution + solutionAlpha(L, k, 0u), alpha);
     weightSum += cmsSelectionWeight(alpha);
+    alphaSum += alpha;
   }
+  // Every vertex adds the sum: it must be finite too, with room (the bound keeps the float and
+  // double solves from disagreeing about sums that round to infinity in one of them).
+  allFinite = allFinite && cmsIsFinite3(alphaSum) && max(max(abs(alphaSum.x), abs(alphaSum.y)), abs(alphaSum.z)) <= kSolveMaxAlphaSum;
 
   bool solved = CELL_SAMPLES(cell) >= params.minSamples && inSystem > 0u && allFinite;
   bool writeAlpha = solved && (params.flags & kSolveControlVariate) != 0u;
@@ -238,6 +245,7 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
 
   cmsWriteSolution3(solution + solutionAlphaB(L, 0u), writeAlpha ? alphaB : vec3(0.0f));
   CELL_SOLUTION(solution + solutionValid(L)) = writeAlpha ? 1.0f : 0.0f;
+  cmsWriteSolution3(solution + solutionAlphaSum(L, 0u), writeAlpha ? alphaSum : vec3(0.0f));
 }
 
 SHARED_END_WITH_BUFFERS

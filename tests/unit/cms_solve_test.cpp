@@ -311,6 +311,12 @@ void expectWellFormed(const GpuCell& g, const float* defaults, const std::string
   for (uint32_t i = 0; i < shared::cellSolutionStride(g.L); ++i)
     ASSERT_TRUE(std::isfinite(g.s[i])) << where << ": solution slot " << i << " = " << g.s[i];
   ASSERT_TRUE(g.valid() == 0.0f || g.valid() == 1.0f) << where;
+  // The stored integral of the control variate is the sum of the coefficients.
+  glm::dvec3 alphaSum = g.alphaB();
+  for (uint32_t k = 0; k < g.L; ++k) alphaSum += g.alpha(k);
+  glm::dvec3 stored = g.read3(shared::solutionAlphaSum(g.L, 0));
+  for (int c = 0; c < 3; ++c)
+    ASSERT_NEAR(stored[c], alphaSum[c], 1e-5 * (1.0 + std::abs(alphaSum[c]) + std::abs(stored[c]))) << where << ": alpha sum";
   if (g.valid() == 0.0f) {
     for (uint32_t k = 0; k < g.L; ++k) ASSERT_EQ(g.alpha(k), glm::dvec3(0.0)) << where;
     ASSERT_EQ(g.alphaB(), glm::dvec3(0.0)) << where;
