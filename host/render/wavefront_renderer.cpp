@@ -203,7 +203,7 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   dispatch(cmd, *accumulate_, pc, groupsFor(paths));
 }
 
-void WavefrontRenderer::recordSolve(VkCommandBuffer cmd, bool timed) {
+shared::SolveParams WavefrontRenderer::solveParams() const {
   shared::SolveParams params{};
   params.cellCount = cellTableSize_;
   params.clusterCount = clusterCount_;
@@ -212,6 +212,24 @@ void WavefrontRenderer::recordSolve(VkCommandBuffer cmd, bool timed) {
                  (settings_.cms.controlVariate ? shared::kSolveControlVariate : 0u);
   params.ridge = settings_.ridge;
   params.defensive = settings_.defensive;
+  return params;
+}
+
+WavefrontRenderer::CmsCellState WavefrontRenderer::cmsCellState() const {
+  CmsCellState s;
+  if (!solver_) return s;
+  s.clusters = clusterCount_;
+  s.keys = cellKeys_.downloadAll<uint64_t>();
+  s.stats = cellStats_.downloadAll<float>();
+  s.samples = cellSamples_.downloadAll<uint32_t>();
+  s.solution = cellSolution_.downloadAll<float>();
+  s.defaults = clusterDefaults_.downloadAll<float>();
+  s.params = solveParams();
+  return s;
+}
+
+void WavefrontRenderer::recordSolve(VkCommandBuffer cmd, bool timed) {
+  const shared::SolveParams params = solveParams();
   // The solve also restarts the statistics of cells whose selection changed (shared/cms_solve.h).
   solver_->record(cmd, params);
   if (timed) timer_.mark(cmd, "solve");

@@ -37,11 +37,24 @@ class WavefrontRenderer : public Renderer {
   std::string deviceName() const override;
   uint32_t pathsPerChunk() const { return pathCount_; }
 
+  // CMS: the cells as they are now (for tests and debug views). Empty for the other methods.
+  struct CmsCellState {
+    uint32_t clusters = 0;            // L
+    std::vector<uint64_t> keys;       // per slot; 0 = unused
+    std::vector<float> stats;         // per slot, cellStatsStride(L) floats (shared/cms_layouts.h)
+    std::vector<uint32_t> samples;    // per slot
+    std::vector<float> solution;      // per slot, cellSolutionStride(L) floats
+    std::vector<float> defaults;      // L: the default selection
+    shared::SolveParams params{};     // what the next solve runs with (cellCount = slots)
+  };
+  CmsCellState cmsCellState() const;
+
  private:
   void recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths);
   // CMS, between training iterations: solve every cell from its statistics so far, and refresh
   // the pixel estimate the next iteration's statistics are weighted by.
   void recordSolve(VkCommandBuffer cmd, bool timed);
+  shared::SolveParams solveParams() const;
   void dispatch(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, uint32_t groups);
   void dispatchIndirect(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, VkDeviceSize offset);
 

@@ -19,8 +19,12 @@
 
 #include <gtest/gtest.h>
 
+#include "cms/cms_setup.h"
 #include "cms/gpu_solver.h"
 #include "cms/reference_solve.h"
+#include "render/wavefront_renderer.h"
+#include "scene/gltf_loader.h"
+#include "scene/prepared_scene.h"
 #include "shared/bindings.h"
 #include "shared/cms_layouts.h"
 #include "shared/layouts.h"
@@ -961,6 +965,56 @@ TEST_F(CmsSolve, SharedSolveCompiledAsCppAgreesWithTheGpu) {
     EXPECT_LE(scaledError(batch.cell(i), L, gpuAlphas(g), gpuAlphas(c)), 1e-5) << where;
     for (uint32_t k = 0; k < L; ++k) EXPECT_NEAR(g.select(k), c.select(k), 1e-6) << where;
   }
+}
+
+// The statistics a render actually gathers (many_lights, cms, after 6 spp: the cells hold the
+// samples since the solve after spp 3, under the selections that solve kept or adopted), solved
+// by the solve pass and by the double-precision reference: same decisions, same coefficients.
+TEST_F(CmsSolve, StatisticsOfARenderMatchTheReference) {
+  PreparedScene prepared =
+      prepareScene(loadGltf(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/many_lights.gltf"), LightSelection::Power);
+  RenderSettings settings;
+  settings.width = 64;
+  settings.height = 48;
+  settings.cms = cmsMethodFor("cms");
+  CmsScene cms = setUpClusters(prepared, 16, settings.cms.defaults);
+  WavefrontRenderer renderer(*ctx_, prepared, settings, &cms);
+  renderer.renderSamples(6);
+  const WavefrontRenderer::CmsCellState state = renderer.cmsCellState();
+  const uint32_t L = state.clusters;
+  ASSERT_EQ(L, 16u);
+  Batch batch(L);
+  batch.defaults = state.defaults;
+  std::vector<float> initial;
+  const uint32_t statsStride = shared::cellStatsStride(L), solStride = shared::cellSolutionStride(L);
+  for (size_t slot = 0; slot < state.keys.size(); ++slot) {
+    if (state.keys[slot] == 0) continue;
+    batch.add(std::vector<float>(state.stats.begin() + slot * statsStride, state.stats.begin() + (slot + 1) * statsStride),
+              state.samples[slot]);
+    initial.insert(initial.end(), state.solution.begin() + slot * solStride, state.solution.begin() + (slot + 1) * solStride);
+  }
+  ASSERT_GT(batch.cells(), 20u) << "the render reached few cells";
+  std::vector<float> statsAfter;
+  std::vector<uint32_t> samplesAfter;
+  std::vector<float> gpu = solveOnGpu(batch, state.params, &initial, &statsAfter, &samplesAfter);
+  uint32_t valid = 0, kept = 0;
+  for (uint32_t i = 0; i < batch.cells(); ++i) {
+    std::string where = "cell " + std::to_string(i);
+    GpuCell g = gpuCell(gpu, L, i);
+    expectWellFormed(g, batch.defaults.data(), where);
+    const float* previous = &initial[size_t(i) * solStride + shared::solutionSelect(L, 0)];
+    CellSolution ref = solveCellReference(batch.cell(i), batch.samples[i], L, state.params, batch.defaults.data(), previous);
+    ASSERT_EQ(g.valid() == 1.0f, ref.valid) << where;
+    EXPECT_EQ(samplesAfter[i] == 0 && batch.samples[i] > 0, ref.resetStatistics && batch.samples[i] > 0) << where;
+    if (ref.valid) {
+      ++valid;
+      EXPECT_LE(scaledError(batch.cell(i), L, gpuAlphas(g), refAlphas(ref)), 1e-3) << where;
+    }
+    kept += !ref.resetStatistics;
+    for (uint32_t k = 0; k < L; ++k) EXPECT_NEAR(g.select(k), ref.select[k], 1e-4) << where << " c_" << k;
+  }
+  EXPECT_GT(valid, batch.cells() / 4) << "most reached cells have enough samples to be solved";
+  EXPECT_GT(kept, 0u) << "some cells keep their selection and statistics";
 }
 
 // More workgroups than a dispatch allows in x: the solver wraps them into y.
