@@ -75,9 +75,7 @@ int runRender(const RenderOptions& o) {
   std::unique_ptr<VulkanContext> ctx;
   std::unique_ptr<Renderer> backend;
   if (o.backend == "cpu") {
-    if (settings.cms.clusters)
-      throw Error("--method " + o.method + " is not available on the CPU backend yet (use --backend vulkan)");
-    backend = std::make_unique<CpuRenderer>(prepared, settings);
+    backend = std::make_unique<CpuRenderer>(prepared, settings, settings.cms.clusters ? &cms : nullptr);
   } else {
     ctx = std::make_unique<VulkanContext>(ContextOptions{o.device, o.validation});
     backend = std::make_unique<WavefrontRenderer>(*ctx, prepared, settings, settings.cms.clusters ? &cms : nullptr);

@@ -12,9 +12,9 @@ namespace {
 
 using shared::SolveParams;
 
-bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+bool finite3(const double* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
-bool usableDiagonal(float a) { return std::isfinite(a) && a >= shared::kSolveMinDiagonal; }
+bool usableDiagonal(double a) { return std::isfinite(a) && a >= double(shared::kSolveMinDiagonal); }
 
 // The output is float: a coefficient beyond float's range cannot be written, so it counts as
 // non-finite, as it does on the GPU.
@@ -27,22 +27,22 @@ bool fitsFloat(const glm::dvec3& v) {
 double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 // Entry (t, u) of the full arrowhead matrix over techniques 0..L-1 (clusters) and L (B).
-double matrixEntry(const float* stats, uint32_t L, uint32_t t, uint32_t u) {
+double matrixEntry(const double* stats, uint32_t L, uint32_t t, uint32_t u) {
   if (t == u) return t == L ? stats[shared::statsABB(L)] : stats[shared::statsAkk(L, t)];
   if (t == L) return stats[shared::statsAkB(L, u)];
   if (u == L) return stats[shared::statsAkB(L, t)];
   return 0.0;   // two clusters: disjoint supports
 }
 
-glm::dvec3 rhs(const float* stats, uint32_t L, uint32_t t) {
-  const float* b = t == L ? &stats[shared::statsBB(L, 0)] : &stats[shared::statsBk(L, t, 0)];
+glm::dvec3 rhs(const double* stats, uint32_t L, uint32_t t) {
+  const double* b = t == L ? &stats[shared::statsBB(L, 0)] : &stats[shared::statsBk(L, t, 0)];
   return glm::dvec3(b[0], b[1], b[2]);
 }
 
 // Solves the Jacobi-scaled, ridge-regularised system over `techniques` by dense Cholesky. A pivot
 // at or below the floor drops its technique and starts over. Returns alpha per technique of the
 // final set (which it shrinks in place).
-std::vector<glm::dvec3> solveSystem(const float* stats, uint32_t L, double ridge, std::vector<uint32_t>& techniques) {
+std::vector<glm::dvec3> solveSystem(const double* stats, uint32_t L, double ridge, std::vector<uint32_t>& techniques) {
   const double diag = 1.0 + ridge;
   const double floor = double(shared::kSolvePivotFloor) * diag;
   for (;;) {
@@ -87,6 +87,13 @@ std::vector<glm::dvec3> solveSystem(const float* stats, uint32_t L, double ridge
 }  // namespace
 
 CellSolution solveCellReference(const float* stats, uint32_t samples, uint32_t L, const SolveParams& params,
+                                const float* defaults, const float* previousSelect) {
+  // Every float is exactly a double, so the float statistics take the double path unchanged.
+  std::vector<double> wide(stats, stats + shared::cellStatsStride(L));
+  return solveCellReference(wide.data(), samples, L, params, defaults, previousSelect);
+}
+
+CellSolution solveCellReference(const double* stats, uint32_t samples, uint32_t L, const SolveParams& params,
                                 const float* defaults, const float* previousSelect) {
   CellSolution out;
   out.alpha.assign(L, glm::dvec3(0.0));

@@ -2,7 +2,7 @@
 // The per-cell CMS solve in double precision, written independently of the GPU's float version
 // (shared/cms_solve.h, whose header comment states the rules both follow): a dense Cholesky of the
 // system restricted to the techniques with usable samples, not the arrowhead shortcut. Tests hold
-// the solve pass to it; the CPU renderer may use it as its solve.
+// the solve pass to it; the CPU renderer uses it as its solve.
 #include <cstdint>
 #include <vector>
 
@@ -25,6 +25,9 @@ struct CellSolution {
 // stats: cellStatsStride(L) floats of one cell; defaults: L floats (the default selection pmf);
 // previousSelect: the L floats of the selection the cell used so far (nullptr: none yet).
 CellSolution solveCellReference(const float* stats, uint32_t samples, uint32_t L, const shared::SolveParams& params,
+                                const float* defaults, const float* previousSelect = nullptr);
+// The same for statistics accumulated in double (the CPU renderer's).
+CellSolution solveCellReference(const double* stats, uint32_t samples, uint32_t L, const shared::SolveParams& params,
                                 const float* defaults, const float* previousSelect = nullptr);
 
 }  // namespace mixtrace

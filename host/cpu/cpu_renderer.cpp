@@ -5,7 +5,10 @@
 #include <mutex>
 #include <thread>
 
+#include "cpu/cpu_cms_access.h"
+#include "cpu/cpu_cms_path.h"
 #include "scene/shared_scene_access.h"
+#include "util/error.h"
 #include "shared/bsdf.h"
 #include "shared/camera.h"
 #include "shared/ray_offset.h"
@@ -90,14 +93,18 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
 
 }  // namespace
 
-CpuRenderer::CpuRenderer(const PreparedScene& scene, const RenderSettings& settings)
+CpuRenderer::CpuRenderer(const PreparedScene& scene, const RenderSettings& settings, const CmsScene* cms)
     : scene_(scene),
       settings_(settings),
       camera_(makeCamera(scene.scene, settings.width, settings.height)),
       lightCount_(uint32_t(scene.lights.lights.size())),
       threads_(settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency())),
       film_(size_t(settings.width) * settings.height) {
+  if (settings.maxDepth < 1) throw Error("--max-depth must be at least 1");
+  if (settings.cms.clusters && !cms) throw Error("internal: a CMS method without light clusters");
   gSharedScene = &scene_;
+  if (settings.cms.clusters && !cms->clusters.clusters.empty())
+    cms_ = std::make_unique<CpuCmsCells>(*cms, scene.scene.bounds, settings, uint32_t(film_.size()));
 }
 
 std::string CpuRenderer::deviceName() const {
@@ -119,7 +126,18 @@ void CpuRenderer::renderTile(uint32_t tile, uint32_t count, RenderCounters& loca
         float jitterY = shared::rngNextFloat(rng);
         glm::vec2 jitter(jitterX, jitterY);
         glm::vec3 direction = shared::cameraRayDirection(camera_, x, y, jitter);
-        glm::vec3 l = tracePath(camera_.position, direction, rng, settings_.maxDepth, lightCount_, local);
+        glm::vec3 l;
+        if (cms_) {
+          CmsPathContext ctx;
+          ctx.cells = cms_.get();
+          ctx.maxDepth = settings_.maxDepth;
+          ctx.lightCount = lightCount_;
+          ctx.pixel = pixel;
+          ctx.sampleIndex = sampleIndex;
+          l = traceCmsPath(camera_.position, direction, rng, ctx, local);
+        } else {
+          l = tracePath(camera_.position, direction, rng, settings_.maxDepth, lightCount_, local);
+        }
         if (!std::isfinite(l.x) || !std::isfinite(l.y) || !std::isfinite(l.z)) {
           ++local.nonFiniteSamples;
           l = glm::vec3(0.0f);
@@ -136,6 +154,33 @@ void CpuRenderer::renderTile(uint32_t tile, uint32_t count, RenderCounters& loca
 
 void CpuRenderer::renderSamples(uint32_t count) {
   gSharedScene = &scene_;
+  gCpuCmsCells = cms_.get();
+  if (!cms_) {
+    renderPass(count);
+    spp_ += count;
+    return;
+  }
+  for (uint32_t s = 0; s < count; ++s) {
+    renderPass(1);
+    spp_ += 1;
+    // Training iterations of doubling length (cms.md §7): after samples 1, 3, 7, 15, ... the cells
+    // are solved, then the pixel estimate of the relative weights is refreshed.
+    const uint32_t done = spp_;
+    if (((done + 1) & done) == 0) {
+      cms_->solveAll();
+      if (settings_.relativeWeighting) cms_->refreshPixelEstimate(filmMeans(), settings_.width, settings_.height);
+    }
+  }
+}
+
+std::vector<glm::vec3> CpuRenderer::filmMeans() const {
+  std::vector<glm::vec3> means(film_.size());
+  for (size_t p = 0; p < film_.size(); ++p)
+    means[p] = glm::vec3(float(film_[p].mean[0]), float(film_[p].mean[1]), float(film_[p].mean[2]));
+  return means;
+}
+
+void CpuRenderer::renderPass(uint32_t count) {
   const uint32_t tiles = ((settings_.width + kTileSize - 1) / kTileSize) * ((settings_.height + kTileSize - 1) / kTileSize);
   std::atomic<uint32_t> nextTile{0};
   std::mutex merge;
@@ -151,7 +196,6 @@ void CpuRenderer::renderSamples(uint32_t count) {
   for (uint32_t i = 1; i < threads_; ++i) pool.emplace_back(worker);
   worker();
   for (auto& t : pool) t.join();
-  spp_ += count;
 }
 
 Image CpuRenderer::readImage(Image* variance) const {
@@ -166,6 +210,14 @@ Image CpuRenderer::readImage(Image* variance) const {
   return mean;
 }
 
-RenderCounters CpuRenderer::counters() const { return counters_; }
+RenderCounters CpuRenderer::counters() const {
+  RenderCounters c = counters_;
+  if (cms_) {
+    c.cellsUsed = cms_->cellsUsed();
+    c.cellTableSize = cms_->grid().tableSize;
+    c.verticesWithoutCell = cms_->verticesWithoutCell();
+  }
+  return c;
+}
 
 }  // namespace mixtrace

@@ -4,10 +4,17 @@
 // written independently of the wavefront orchestration; the material, sampling and traversal
 // maths are the shared headers the GPU runs too (chi-square tested on their own).
 // Statistics are accumulated in double precision.
+//
+// The pt-* methods trace each tile's pixels sample after sample. Controlled mixture sampling
+// (learned, cv, cms: cpu/cpu_cms_path.h, cpu/cpu_cms_cells.h) renders sample-major instead, one
+// sample index for all pixels, then the next, because the cells are solved between sample indices:
+// after samples 1, 3, 7, 15, ... (training iterations of doubling length), as the Vulkan renderer.
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "cpu/cpu_cms_cells.h"
 #include "render/renderer.h"
 #include "scene/prepared_scene.h"
 
@@ -15,7 +22,9 @@ namespace mixtrace {
 
 class CpuRenderer : public Renderer {
  public:
-  CpuRenderer(const PreparedScene& scene, const RenderSettings& settings);
+  // `cms` is required for the CMS methods (settings.cms.clusters); a scene without lights has no
+  // clusters and then renders as the plain path tracer, as on the GPU.
+  CpuRenderer(const PreparedScene& scene, const RenderSettings& settings, const CmsScene* cms = nullptr);
 
   void renderSamples(uint32_t count) override;
   uint32_t samplesPerPixel() const override { return spp_; }
@@ -30,6 +39,10 @@ class CpuRenderer : public Renderer {
     double m2[3] = {0.0, 0.0, 0.0};  // sum of squared deviations (Welford)
   };
   void renderTile(uint32_t tile, uint32_t count, RenderCounters& local);
+  // Runs renderTile(tile, count) over all tiles on the worker threads and adds up their counters.
+  void renderPass(uint32_t count);
+  // The running means as floats (what the GPU's film holds), for the CMS pixel estimate.
+  std::vector<glm::vec3> filmMeans() const;
 
   const PreparedScene& scene_;
   RenderSettings settings_;
@@ -39,6 +52,7 @@ class CpuRenderer : public Renderer {
   uint32_t spp_ = 0;
   std::vector<PixelStats> film_;
   RenderCounters counters_;
+  std::unique_ptr<CpuCmsCells> cms_;   // null for the pt-* methods
 };
 
 }  // namespace mixtrace

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "cms/cell_grid.h"
 #include "shared/bindings.h"
 #include "util/error.h"
 #include "vulkan/check.h"
@@ -14,24 +15,6 @@ namespace {
 
 
 uint32_t groupsFor(uint32_t n) { return (n + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize; }
-
-}  // namespace
-
-namespace {
-
-uint32_t floorPowerOfTwo(uint64_t n) {
-  uint32_t p = 1;
-  while (uint64_t(p) * 2 <= n && p < (1u << 30)) p *= 2;
-  return p;
-}
-
-// Slots of the cell table: room for about 8 cells per grid cell on a surface-like layer of the
-// grid, kept so that the statistics buffer stays within 64 MiB.
-uint32_t cellTableSizeFor(uint32_t cells, uint32_t clusters) {
-  uint64_t wanted = std::max<uint64_t>(4096, uint64_t(48) * cells * cells);
-  uint64_t limit = (64ull << 20) / (sizeof(float) * shared::cellStatsStride(clusters));
-  return floorPowerOfTwo(std::min(wanted * 2 - 1, limit));
-}
 
 }  // namespace
 
@@ -63,7 +46,8 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   // CMS buffers (placeholders of one element for the other methods, so every binding is valid).
   const bool useCms = s.cms.clusters && cms && !cms->clusters.clusters.empty();
   clusterCount_ = useCms ? uint32_t(cms->clusters.clusters.size()) : 1;
-  cellTableSize_ = useCms ? cellTableSizeFor(s.cells, clusterCount_) : 1;
+  const CellGridSetup grid = makeCellGrid(scene.scene.bounds, s.cells, clusterCount_);
+  cellTableSize_ = useCms ? grid.tableSize : 1;
   const size_t cvPaths = useCms ? pathCount_ : 1;
   cellKeys_ = Buffer(ctx, size_t(cellTableSize_) * sizeof(uint64_t), "CMS cell table");
   cellStats_ = Buffer(ctx, size_t(cellTableSize_) * shared::cellStatsStride(clusterCount_) * sizeof(float), "CMS cell statistics");
@@ -77,10 +61,8 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   cvBsdfCos_ = Buffer(ctx, cvPaths * sizeof(glm::vec3), "path state (CMS bsdf cos)");
   pixelEstimate_ = Buffer(ctx, size_t(useCms ? pixelCount_ : 1) * sizeof(glm::vec3), "CMS pixel estimate");
   if (useCms) {
-    const Bounds& b = scene.scene.bounds;
-    float longest = std::max({b.extent().x, b.extent().y, b.extent().z, 1e-6f});
-    gridOrigin_ = b.min - 1e-3f * longest;
-    gridInvCellSize_ = float(s.cells) / (longest * 1.002f);
+    gridOrigin_ = grid.origin;
+    gridInvCellSize_ = grid.invCellSize;
   }
   set_.bind(BINDING_CELL_KEYS, cellKeys_);
   set_.bind(BINDING_CELL_STATS, cellStats_);

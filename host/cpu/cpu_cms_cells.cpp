@@ -1,0 +1,137 @@
+#include "cpu/cpu_cms_cells.h"
+
+#include "cms/reference_solve.h"
+#include "shared/cms_layouts.h"
+
+namespace mixtrace {
+namespace {
+// The table and the film the shared headers below read, set by the member that calls into them
+// (thread_local: every worker looks cells up at once, possibly in different renderers).
+thread_local CpuCmsCells* tLookupTable = nullptr;
+thread_local const glm::vec3* tFilmMean = nullptr;
+}  // namespace
+}  // namespace mixtrace
+
+#define CELL_KEY_LOAD(slot) (::mixtrace::tLookupTable->keyLoad(slot))
+#define CELL_KEY_CAS(slot, expected, desired) (::mixtrace::tLookupTable->keyCompareSwap(slot, expected, desired))
+#include "shared/cms_cells.h"
+#define FILM_MEAN(i) (::mixtrace::tFilmMean[i])
+#include "shared/pixel_estimate.h"
+
+namespace mixtrace {
+
+CpuCmsCells::CpuCmsCells(const CmsScene& cms, const Bounds& sceneBounds, const RenderSettings& settings,
+                         uint32_t pixelCount)
+    : L_(uint32_t(cms.clusters.clusters.size())),
+      grid_(makeCellGrid(sceneBounds, settings.cells, L_)),
+      controlVariate_(settings.cms.controlVariate),
+      relativeWeighting_(settings.relativeWeighting),
+      defaults_(cms.clusters.defaultSelection),
+      clusters_(cms.clusters.clusters),
+      clusterLights_(cms.clusterLights),
+      keys_(new std::atomic<uint64_t>[grid_.tableSize]),
+      stats_(new std::atomic<double>[size_t(grid_.tableSize) * shared::cellStatsStride(L_)]),
+      cellSamples_(new std::atomic<uint32_t>[grid_.tableSize]),
+      solution_(size_t(grid_.tableSize) * shared::cellSolutionStride(L_), 0.0f),   // no selection yet
+      pixelEstimate_(pixelCount, glm::vec3(0.0f)) {
+  for (uint32_t i = 0; i < grid_.tableSize; ++i) {
+    keys_[i].store(0, std::memory_order_relaxed);
+    cellSamples_[i].store(0, std::memory_order_relaxed);
+  }
+  for (size_t i = 0; i < size_t(grid_.tableSize) * shared::cellStatsStride(L_); ++i)
+    stats_[i].store(0.0, std::memory_order_relaxed);
+  // The solve pass's parameters, as the Vulkan renderer sets them (recordSolve).
+  solveParams_.cellCount = grid_.tableSize;
+  solveParams_.clusterCount = L_;
+  solveParams_.minSamples = settings.minCellSamples;
+  solveParams_.flags = (settings.cms.learnSelection ? shared::kSolveLearnSelection : 0u) |
+                       (settings.cms.controlVariate ? shared::kSolveControlVariate : 0u);
+  solveParams_.ridge = settings.ridge;
+  solveParams_.defensive = settings.defensive;
+  // Every slot is solved once, so every cell, claimed later or not, starts with the defaults.
+  for (uint32_t cell = 0; cell < grid_.tableSize; ++cell) solveCell(cell);
+}
+
+uint32_t CpuCmsCells::findCell(glm::vec3 position, glm::vec3 geometricNormal, uint32_t material) {
+  shared::CellGrid grid{};
+  grid.origin = grid_.origin;
+  grid.invCellSize = grid_.invCellSize;
+  grid.tableSize = grid_.tableSize;
+  tLookupTable = this;
+  uint32_t cell = shared::findOrInsertCell(grid, position, geometricNormal, material);
+  if (cell == shared::kNoCell) verticesWithoutCell_.fetch_add(1, std::memory_order_relaxed);
+  return cell;
+}
+
+double CpuCmsCells::sampleWeight(glm::vec3 throughput, uint32_t pixel, uint32_t sampleIndex) const {
+  if (!gathering(sampleIndex)) return 0.0;
+  return relativeWeighting_ ? double(shared::relativeSampleWeight(throughput, pixelEstimate_[pixel])) : 1.0;
+}
+
+void CpuCmsCells::add(uint32_t cell, uint32_t index, double value) {
+  if (value == 0.0) return;
+  std::atomic<double>& slot = stats_[size_t(cell) * shared::cellStatsStride(L_) + index];
+  double seen = slot.load(std::memory_order_relaxed);
+  while (!slot.compare_exchange_weak(seen, seen + value, std::memory_order_relaxed)) {
+  }
+}
+
+void CpuCmsCells::addSampleToA(uint32_t cell, uint32_t k, double pk, double pB, double peff, double w) {
+  const double inv = w / (peff * peff);
+  if (k != shared::kNoCell) {
+    add(cell, shared::statsAkk(L_, k), pk * pk * inv);
+    add(cell, shared::statsAkB(L_, k), pk * pB * inv);
+  }
+  add(cell, shared::statsABB(L_), pB * pB * inv);
+}
+
+void CpuCmsCells::addSampleToB(uint32_t cell, uint32_t k, glm::vec3 f, double pk, double pB, double peff, double w) {
+  const double scaleK = w * pk / (peff * peff), scaleB = w * pB / (peff * peff);
+  for (uint32_t c = 0; c < 3; ++c) {
+    if (k != shared::kNoCell) add(cell, shared::statsBk(L_, k, c), double(f[c]) * scaleK);
+    add(cell, shared::statsBB(L_, c), double(f[c]) * scaleB);
+  }
+}
+
+void CpuCmsCells::solveCell(uint32_t cell) {
+  const uint32_t statsStride = shared::cellStatsStride(L_);
+  std::atomic<double>* stats = &stats_[size_t(cell) * statsStride];
+  std::vector<double> snapshot(statsStride);
+  for (uint32_t i = 0; i < statsStride; ++i) snapshot[i] = stats[i].load(std::memory_order_relaxed);
+  float* out = &solution_[size_t(cell) * shared::cellSolutionStride(L_)];
+  CellSolution s = solveCellReference(snapshot.data(), cellSamples_[cell].load(std::memory_order_relaxed), L_,
+                                      solveParams_, defaults_.data(), out + shared::solutionSelect(L_, 0));
+  for (uint32_t k = 0; k < L_; ++k) {
+    for (uint32_t c = 0; c < 3; ++c) out[shared::solutionAlpha(L_, k, c)] = float(s.alpha[k][c]);
+    out[shared::solutionSelect(L_, k)] = float(s.select[k]);
+  }
+  for (uint32_t c = 0; c < 3; ++c) out[shared::solutionAlphaB(L_, c)] = float(s.alphaB[c]);
+  out[shared::solutionValid(L_)] = s.valid ? 1.0f : 0.0f;
+  if (s.resetStatistics) {
+    for (uint32_t i = 0; i < statsStride; ++i) stats[i].store(0.0, std::memory_order_relaxed);
+    cellSamples_[cell].store(0, std::memory_order_relaxed);
+  }
+}
+
+void CpuCmsCells::solveAll() {
+  // A slot no vertex claimed holds empty statistics and, since the first solve, the defaults; its
+  // solve would change nothing, so only claimed cells are solved.
+  for (uint32_t cell = 0; cell < grid_.tableSize; ++cell)
+    if (keys_[cell].load(std::memory_order_relaxed) != 0) solveCell(cell);
+}
+
+void CpuCmsCells::refreshPixelEstimate(const std::vector<glm::vec3>& filmMean, uint32_t width, uint32_t height) {
+  tFilmMean = filmMean.data();
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x)
+      pixelEstimate_[size_t(y) * width + x] = shared::pixelEstimateAt(int(x), int(y), int(width), int(height));
+  tFilmMean = nullptr;
+}
+
+uint64_t CpuCmsCells::cellsUsed() const {
+  uint64_t used = 0;
+  for (uint32_t i = 0; i < grid_.tableSize; ++i) used += keys_[i].load(std::memory_order_relaxed) != 0;
+  return used;
+}
+
+}  // namespace mixtrace

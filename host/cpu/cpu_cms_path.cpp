@@ -1,0 +1,176 @@
+#include "cpu/cpu_cms_path.h"
+
+#include <cmath>
+
+#include "cpu/cpu_cms_access.h"
+#include "shared/bsdf.h"
+#include "shared/ray_offset.h"
+#include "shared/rng.h"
+#include "shared/sampling.h"
+
+namespace mixtrace {
+namespace {
+
+// What the BSDF sample of the previous vertex left for the next one: its terms depend on what it
+// hits (cms.md §3), so they are paid once the next hit is known (shade.comp's cv* path state).
+struct PendingBsdfSample {
+  float pdf = 0.0f;              // p_B; 0: camera ray, nothing pending
+  uint32_t cell = shared::kNoCell;
+  glm::vec3 throughput{0.0f};    // path throughput at the vertex that drew it
+  glm::vec3 bsdfCos{0.0f};       // bsdf * |cos| of its direction
+};
+
+}  // namespace
+
+glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, const CmsPathContext& ctx,
+                       RenderCounters& counters) {
+  using namespace shared;
+  CpuCmsCells& cells = *ctx.cells;
+  const uint L = cells.clusterCount();
+  const bool controlVariate = cells.controlVariate();
+  const bool gathering = cells.gathering(ctx.sampleIndex);
+  auto weightOf = [&](vec3 throughput) { return cells.sampleWeight(throughput, ctx.pixel, ctx.sampleIndex); };
+
+  vec3 radiance(0.0f), beta(1.0f);
+  PendingBsdfSample pending;
+  for (uint32_t depth = 1; depth <= ctx.maxDepth; ++depth) {
+    ++counters.extensionRays;
+    HitRecord hit = traceClosest(origin, direction, kFloatMax);
+    const bool hitEmitter = hit.triangle != kNoHit && TRIANGLE_SHADING(hit.triangle).emitter >= 0;
+    SurfaceHit sh;
+    if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
+
+    // The previous vertex's BSDF sample, now that its hit is known.
+    float emissionWeight = 1.0f;
+    if (pending.pdf > 0.0f) {
+      uint j = kNoCell;
+      float pj = 0.0f;
+      if (hitEmitter) {
+        j = LIGHT(lightOfTriangle(hit.triangle)).cluster;
+        pj = clusterPointPdf(hit.triangle, origin, sh.position);
+      }
+      float peff = (j != kNoCell ? clusterSelectPmf(pending.cell, L, j) * pj : 0.0f) + pending.pdf;
+      emissionWeight = pending.pdf / peff;
+      if (controlVariate && cellSolutionValid(pending.cell, L)) {
+        vec3 g = cellAlphaB(pending.cell, L) * pending.pdf;
+        if (j != kNoCell) g += cellAlpha(pending.cell, L, j) * pj;
+        radiance -= pending.throughput * g / peff;
+      }
+      if (pending.cell != kNoCell && gathering) {
+        double w = weightOf(pending.throughput);
+        cells.addSampleToA(pending.cell, j, pj, pending.pdf, peff, w);
+        if (hitEmitter) {
+          vec3 f = emittedRadiance(hit.triangle, hit.u, hit.v, -direction) * pending.bsdfCos;
+          cells.addSampleToB(pending.cell, j, f, pj, pending.pdf, peff, w);
+        }
+      }
+    }
+    if (hit.triangle == kNoHit) break;   // no environment light: the path ends
+    if (isBlack(beta)) break;            // continued only to settle the terms above
+
+    // Emission reached by this ray (MIS weight against the mixture of the previous vertex).
+    if (hitEmitter) {
+      vec3 le = emittedRadiance(hit.triangle, hit.u, hit.v, -direction);
+      radiance += beta * le * (pending.pdf > 0.0f ? emissionWeight : 1.0f);
+    }
+    if (depth >= ctx.maxDepth) break;
+
+    BsdfParams bsdf = surfaceBsdf(sh);
+    OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
+    vec3 wo = toLocal(frame, -direction);
+    vec3 next = offsetRayOrigin(sh.position, sh.geometricNormal);
+
+    uint cell = cells.findCell(sh.position, sh.geometricNormal, sh.material);
+    if (cell != kNoCell && gathering) cells.countVertex(cell);
+    const bool cv = controlVariate && cellSolutionValid(cell, L);
+    if (cv) radiance += beta * cellAlphaSum(cell, L);
+
+    // One light sample: a cluster from the cell's selection, a light in it, a point on that.
+    // Named draws: C++ leaves the order of constructor arguments unspecified.
+    float uLight = rngNextFloat(rng);
+    float uEmitter = rngNextFloat(rng);
+    float uPointX = rngNextFloat(rng);
+    float uPointY = rngNextFloat(rng);
+    vec2 uPoint(uPointX, uPointY);
+    if (ctx.lightCount > 0) {
+      uint k = selectCluster(cell, L, uLight);
+      uint light = selectLightInCluster(k, rngNextFloat(rng));
+      LightSample ls;
+      bool carries = sampleLightPoint(sh.position, light, uEmitter, uPoint, ls);
+      float pk = LIGHT(light).clusterPmf * ls.pdf;
+      ls.pdf = clusterSelectPmf(cell, L, k) * pk;   // c_k p_k: the mixture density of this sample
+      const bool cmsTerms = cell != kNoCell;
+      if (ls.pdf > 0.0f || cmsTerms) {
+        vec3 wi = toLocal(frame, ls.direction);
+        bool above = dot(ls.direction, sh.geometricNormal) > 0.0f;
+        if (!(ls.pdf > 0.0f)) {
+          // A point with no solid-angle density from here (e.g. in this surface's plane) is a
+          // hidden point: p_B = 0, and the terms only need ratios, so any positive p_k does.
+          above = false;
+          carries = false;
+          pk = 1.0f;
+          ls.pdf = clusterSelectPmf(cell, L, k);
+        }
+        float pB = (ls.isDelta || !above) ? 0.0f : bsdfPdf(bsdf, wo, wi);
+        float peff = ls.pdf + pB;
+        vec3 f(0.0f);
+        if (carries && above) f = bsdfEval(bsdf, wo, wi) * std::abs(wi.z) * ls.radiance;
+        vec3 contribution = beta * f / peff;
+        if (!isBlack(contribution) || cmsTerms) {
+          // The shadow ray (shadow.comp): a point below the surface is hidden by it, no trace.
+          ++counters.shadowRays;
+          bool visible = false;
+          if (above) {
+            vec3 shadowDirection;
+            float shadowLength;
+            shadowRay(next, ls, shadowDirection, shadowLength);
+            visible = !traceAny(next, shadowDirection, shadowLength);
+          }
+          if (visible) radiance += contribution;
+          // Whether the BSDF could have sampled this point depends on its visibility: a hidden
+          // point has p_B = 0 and p_eff = c_k p_k.
+          float pBSeen = visible ? pB : 0.0f;
+          float peffSeen = ls.pdf + pBSeen;
+          if (cmsTerms && peffSeen > 0.0f) {
+            if (cv) radiance -= beta * (cellAlpha(cell, L, k) * pk + cellAlphaB(cell, L) * pBSeen) / peffSeen;
+            if (gathering) {
+              double w = weightOf(beta);
+              cells.addSampleToA(cell, k, pk, pBSeen, peffSeen, w);
+              if (visible) cells.addSampleToB(cell, k, f, pk, pBSeen, peffSeen, w);
+            }
+          }
+        }
+      }
+    }
+
+    // One BSDF sample: the next extension ray.
+    float uDirectionX = rngNextFloat(rng);
+    float uDirectionY = rngNextFloat(rng);
+    vec2 uDirection(uDirectionX, uDirectionY);
+    float uLobe = rngNextFloat(rng);
+    vec3 wiLocal(0.0f);
+    float pdf = 0.0f;
+    bool sampled = bsdfSample(bsdf, wo, uDirection, uLobe, wiLocal, pdf) && pdf > 0.0f;
+    vec3 wiWorld = toWorld(frame, wiLocal);
+    if (!sampled || !(dot(wiWorld, sh.geometricNormal) > 0.0f)) {
+      // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
+      // (cms.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
+      if (cv) radiance -= beta * cellAlphaB(cell, L);
+      if (cell != kNoCell && gathering) cells.addSampleToA(cell, kNoCell, 0.0, 1.0, 1.0, weightOf(beta));
+      break;
+    }
+    // A path that can carry nothing more is still traced, so the next depth can settle this
+    // sample's control-variate and statistics terms.
+    vec3 bsdfCos = bsdfEval(bsdf, wo, wiLocal) * std::abs(wiLocal.z);
+    pending.pdf = pdf;
+    pending.cell = cell;
+    pending.throughput = beta;
+    pending.bsdfCos = bsdfCos;
+    beta *= bsdfCos / pdf;
+    origin = next;
+    direction = wiWorld;
+  }
+  return radiance;
+}
+
+}  // namespace mixtrace
