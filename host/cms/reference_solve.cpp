@@ -39,16 +39,21 @@ glm::dvec3 rhs(const double* stats, uint32_t L, uint32_t t) {
   return glm::dvec3(b[0], b[1], b[2]);
 }
 
-// Solves the Jacobi-scaled, ridge-regularised system over `techniques` by dense Cholesky. A pivot
-// at or below the floor drops its technique and starts over. Returns alpha per technique of the
-// final set (which it shrinks in place).
+// Solves the ridge-regularised, Jacobi-scaled system over `techniques` by dense Cholesky: r =
+// ridge * the mean diagonal entry of the initial techniques is added to the diagonal, then the
+// system is scaled to a unit diagonal. A pivot at or below the floor drops its technique and
+// starts over (with the same r). Returns alpha per technique of the final set (which it shrinks
+// in place).
 std::vector<glm::dvec3> solveSystem(const double* stats, uint32_t L, double ridge, std::vector<uint32_t>& techniques) {
-  const double diag = 1.0 + ridge;
-  const double floor = double(shared::kSolvePivotFloor) * diag;
+  const double diag = 1.0;
+  const double floor = double(shared::kSolvePivotFloor);
+  double mean = 0.0;
+  for (uint32_t t : techniques) mean += matrixEntry(stats, L, t, t) / double(techniques.size());
+  const double r = ridge * mean;
   for (;;) {
     size_t m = techniques.size();
     std::vector<double> scale(m);
-    for (size_t i = 0; i < m; ++i) scale[i] = 1.0 / std::sqrt(matrixEntry(stats, L, techniques[i], techniques[i]));
+    for (size_t i = 0; i < m; ++i) scale[i] = 1.0 / std::sqrt(matrixEntry(stats, L, techniques[i], techniques[i]) + r);
     std::vector<double> G(m * m, 0.0);   // lower Cholesky factor, row-major
     size_t failed = m;
     for (size_t j = 0; j < m && failed == m; ++j) {
@@ -128,6 +133,7 @@ CellSolution solveCellReference(const double* stats, uint32_t samples, uint32_t 
   if (out.valid) {
     out.alpha = alpha;
     out.alphaB = alphaB;
+    out.alphaSum = alphaSum;
   }
 
   // Selection: defaults sanitised and normalised, learned share where the solve allows it.

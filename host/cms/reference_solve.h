@@ -15,6 +15,7 @@ namespace mixtrace {
 struct CellSolution {
   std::vector<glm::dvec3> alpha;   // per cluster; 0 when unsolved or without kSolveControlVariate
   glm::dvec3 alphaB{0.0};
+  glm::dvec3 alphaSum{0.0};        // sum of alpha and alphaB: the control variate's integral
   std::vector<double> select;      // selection pmf over the clusters (sums to 1)
   bool valid = false;              // the cell uses its control variate
   bool solved = false;             // the system was solved (alpha finite, enough samples), whatever the flags

@@ -105,7 +105,10 @@ void CpuCmsCells::solveCell(uint32_t cell) {
     for (uint32_t c = 0; c < 3; ++c) out[shared::solutionAlpha(L_, k, c)] = float(s.alpha[k][c]);
     out[shared::solutionSelect(L_, k)] = float(s.select[k]);
   }
-  for (uint32_t c = 0; c < 3; ++c) out[shared::solutionAlphaB(L_, c)] = float(s.alphaB[c]);
+  for (uint32_t c = 0; c < 3; ++c) {
+    out[shared::solutionAlphaB(L_, c)] = float(s.alphaB[c]);
+    out[shared::solutionAlphaSum(L_, c)] = float(s.alphaSum[c]);
+  }
   out[shared::solutionValid(L_)] = s.valid ? 1.0f : 0.0f;
   if (s.resetStatistics) {
     for (uint32_t i = 0; i < statsStride; ++i) stats[i].store(0.0, std::memory_order_relaxed);

@@ -37,6 +37,7 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
     ++counters.extensionRays;
     HitRecord hit = traceClosest(origin, direction, kFloatMax);
     const bool hitEmitter = hit.triangle != kNoHit && TRIANGLE_SHADING(hit.triangle).emitter >= 0;
+    const vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -direction) : vec3(0.0f);
     SurfaceHit sh;
     if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
 
@@ -45,7 +46,8 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
     if (pending.pdf > 0.0f) {
       uint j = kNoCell;
       float pj = 0.0f;
-      if (hitEmitter) {
+      // A light point that emits nothing towards the vertex counts as no light point (shade.comp).
+      if (!isBlack(le)) {
         j = LIGHT(lightOfTriangle(hit.triangle)).cluster;
         pj = clusterPointPdf(hit.triangle, origin, sh.position);
       }
@@ -59,20 +61,14 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
       if (pending.cell != kNoCell && gathering) {
         double w = weightOf(pending.throughput);
         cells.addSampleToA(pending.cell, j, pj, pending.pdf, peff, w);
-        if (hitEmitter) {
-          vec3 f = emittedRadiance(hit.triangle, hit.u, hit.v, -direction) * pending.bsdfCos;
-          cells.addSampleToB(pending.cell, j, f, pj, pending.pdf, peff, w);
-        }
+        if (j != kNoCell) cells.addSampleToB(pending.cell, j, le * pending.bsdfCos, pj, pending.pdf, peff, w);
       }
     }
     if (hit.triangle == kNoHit) break;   // no environment light: the path ends
     if (isBlack(beta)) break;            // continued only to settle the terms above
 
     // Emission reached by this ray (MIS weight against the mixture of the previous vertex).
-    if (hitEmitter) {
-      vec3 le = emittedRadiance(hit.triangle, hit.u, hit.v, -direction);
-      radiance += beta * le * (pending.pdf > 0.0f ? emissionWeight : 1.0f);
-    }
+    if (hitEmitter) radiance += beta * le * (pending.pdf > 0.0f ? emissionWeight : 1.0f);
     if (depth >= ctx.maxDepth) break;
 
     BsdfParams bsdf = surfaceBsdf(sh);
@@ -111,16 +107,17 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
           pk = 1.0f;
           ls.pdf = clusterSelectPmf(cell, L, k);
         }
-        float pB = (ls.isDelta || !above) ? 0.0f : bsdfPdf(bsdf, wo, wi);
+        // Hidden without a trace (shade.comp): below the surface, or emitting nothing towards it.
+        const bool reachable = above && carries;
+        float pB = (ls.isDelta || !reachable) ? 0.0f : bsdfPdf(bsdf, wo, wi);
         float peff = ls.pdf + pB;
         vec3 f(0.0f);
-        if (carries && above) f = bsdfEval(bsdf, wo, wi) * std::abs(wi.z) * ls.radiance;
+        if (reachable) f = bsdfEval(bsdf, wo, wi) * std::abs(wi.z) * ls.radiance;
         vec3 contribution = beta * f / peff;
+        if (reachable && (!isBlack(contribution) || cmsTerms)) ++counters.shadowRays;
         if (!isBlack(contribution) || cmsTerms) {
-          // The shadow ray (shadow.comp): a point below the surface is hidden by it, no trace.
-          ++counters.shadowRays;
           bool visible = false;
-          if (above) {
+          if (reachable) {   // the shadow ray (shadow.comp)
             vec3 shadowDirection;
             float shadowLength;
             shadowRay(next, ls, shadowDirection, shadowLength);

@@ -41,20 +41,25 @@ void addStat(uint cell, uint index, float value) {
 }
 #endif
 
-// k = kNoCell: the sample lies in no cluster's support (a BSDF sample that hit no light).
+// k = kNoCell: the sample lies in no cluster's support (a BSDF sample that hit no light). The
+// ratios p / p_eff (<= 1/c_k and <= 1) are formed first: p_eff^2 overflows for p_eff > 1.8e19
+// (a tiny emitter seen edge-on), and Inf * 0 would put a NaN into the cell.
 void addSampleToA(uint cell, uint k, float pk, float pB, float peff, float w) {
   uint L = pc.clusterCount;
-  float inv = w / (peff * peff);
+  float rk = pk / peff;
+  float rB = pB / peff;
   if (k != kNoCell) {
-    addStat(cell, statsAkk(L, k), pk * pk * inv);
-    addStat(cell, statsAkB(L, k), pk * pB * inv);
+    addStat(cell, statsAkk(L, k), w * rk * rk);
+    addStat(cell, statsAkB(L, k), w * rk * rB);
   }
-  addStat(cell, statsABB(L), pB * pB * inv);
+  addStat(cell, statsABB(L), w * rB * rB);
 }
 
-// scaleK = w p_k / p_eff^2, scaleB = w p_B / p_eff^2; f is the integrand (without throughput).
-void addSampleToB(uint cell, uint k, vec3 f, float scaleK, float scaleB) {
+// b_k += w f p_k / p_eff^2 and b_B += w f p_B / p_eff^2; f is the integrand (without throughput).
+void addSampleToB(uint cell, uint k, vec3 f, float pk, float pB, float peff, float w) {
   uint L = pc.clusterCount;
+  float scaleK = w * (pk / peff) / peff;
+  float scaleB = w * (pB / peff) / peff;
   for (uint c = 0u; c < 3u; ++c) {
     if (k != kNoCell) addStat(cell, statsBk(L, k, c), f[c] * scaleK);
     addStat(cell, statsBB(L, c), f[c] * scaleB);
@@ -73,5 +78,5 @@ void settleLightSample(uint cell, uint k, float pk, float ck, float pB, vec3 f, 
     radiance[path] -= beta * (cellAlpha(cell, L, k) * pk + cellAlphaB(cell, L) * pB) / peff;
   float w = sampleWeight(beta, path);
   addSampleToA(cell, k, pk, pB, peff, w);
-  if (!isBlack(f)) addSampleToB(cell, k, f, w * pk / (peff * peff), w * pB / (peff * peff));
+  if (!isBlack(f)) addSampleToB(cell, k, f, pk, pB, peff, w);
 }

@@ -7,10 +7,16 @@
 //   - A technique whose diagonal entry is not a positive normal float, or whose row holds a NaN or
 //     Inf (A_kk, A_kB, b_k for a cluster; A_BB, b_B for the BSDF technique), has no usable samples
 //     and is dropped from the system: its alpha is 0.
-//   - Jacobi scaling: with D = diag(A), solve (D^-1/2 A D^-1/2 + ridge I) y = D^-1/2 b and set
-//     alpha = D^-1/2 y. The scaled diagonal is 1, so the ridge is relative to its mean.
-//   - The arrowhead Cholesky factor is O(L): L_kk = sqrt(1 + ridge), L_Bk = A'_kB / L_kk,
-//     L_BB = sqrt(1 + ridge - sum_k L_Bk^2). A pivot L_BB^2 <= kSolvePivotFloor * (1 + ridge)
+//   - Ridge (cms.md §6): r = ridge * the mean diagonal entry of the techniques in the system is
+//     added to every diagonal entry. Proportional to the trace, it shrinks the alpha of a technique
+//     with few samples (A_kk << the others: a cluster a rarely chosen light sample or a stray BSDF
+//     hit reached) towards 0, where a ridge relative to each technique's own diagonal would not: a
+//     cluster with A_kk ~ 1e-9 otherwise gets alpha_k ~ -A_kB alpha_B / A_kk, and its light samples
+//     pay alpha_k / c_k, fireflies of 1e4 and more.
+//   - Jacobi scaling: with D = diag(A) + r, solve (D^-1/2 (A + r I) D^-1/2) y = D^-1/2 b and set
+//     alpha = D^-1/2 y. The scaled diagonal is exactly 1.
+//   - The arrowhead Cholesky factor is O(L): L_kk = 1, L_Bk = A'_kB,
+//     L_BB = sqrt(1 - sum_k L_Bk^2). A pivot L_BB^2 <= kSolvePivotFloor
 //     (singular or nearly so: B is a combination of the clusters) drops B; the clusters then
 //     decouple. Factored once, solved for the three RGB right-hand sides.
 //   - The cell is solved when it has at least minSamples samples, at least one technique in the
@@ -43,9 +49,9 @@ SHARED_BEGIN
 // Smallest diagonal entry a technique needs to take part: the smallest normal float. Below it
 // 1/sqrt overflows, and GPUs may flush the value to 0 anyway.
 const float kSolveMinDiagonal = 1.17549435e-38f;
-// A Schur pivot (scaled, so between 0 and 1 + ridge for a consistent system) at or below this
-// fraction of 1 + ridge means B is (numerically) a combination of the clusters: B is dropped.
-// Float cancellation in 1 + ridge - sum L_Bk^2 is ~1e-6 for L = 32, so smaller pivots are noise.
+// A Schur pivot (scaled, so between 0 and 1 for a consistent system) at or below this means B is
+// (numerically) a combination of the clusters: B is dropped. Float cancellation in
+// 1 - sum L_Bk^2 is ~1e-6 for L = 32, so smaller pivots are noise.
 const float kSolvePivotFloor = 1e-5f;
 // Largest |sum of alpha| (per channel) a solved cell may have; radiance beyond is not physical.
 const float kSolveMaxAlphaSum = 1e30f;
@@ -98,22 +104,30 @@ SHARED_FN void cmsWriteSolution3(uint i, vec3 v) {
   CELL_SOLUTION(i + 2u) = v.z;
 }
 
-// Row k of the scaled system and its forward substitution: sk = A_kk^-1/2, lBk = L_Bk (0 when B is
-// not in the system, sB = 0), zk = L_kk^-1 b'_k. False when cluster k has no usable samples.
-SHARED_FN bool cmsClusterRow(uint stats, uint L, uint k, float sB, float lkk, OUT(float) sk, OUT(float) lBk,
+// Whether cluster k has usable samples: a usable diagonal, and a finite row and right-hand side.
+SHARED_FN bool cmsClusterUsable(uint stats, uint L, uint k) {
+  return cmsUsableDiagonal(CELL_STATS(stats + statsAkk(L, k))) && cmsIsFinite(CELL_STATS(stats + statsAkB(L, k))) &&
+         cmsIsFinite3(cmsReadStats3(stats + statsBk(L, k, 0u)));
+}
+
+// The Jacobi scale of a diagonal entry a with the ridge r: (a + r)^-1/2, as a^-1/2 (1 + r/a)^-1/2
+// so that neither a + r nor a tiny a underflowing against a large one is ever formed (r/a may
+// overflow to Inf: the scale is then 0, the technique's alpha 0).
+SHARED_FN float cmsScale(float ridge, float a) { return (1.0f / sqrt(a)) / sqrt(1.0f + ridge / a); }
+
+// Row k of the scaled system and its forward substitution: sk = (A_kk + r)^-1/2, lBk = L_Bk (0 when
+// B is not in the system, sB = 0), zk = b'_k. False when cluster k has no usable samples.
+SHARED_FN bool cmsClusterRow(uint stats, uint L, uint k, float sB, float ridge, OUT(float) sk, OUT(float) lBk,
                              OUT(vec3) zk) {
-  float akk = CELL_STATS(stats + statsAkk(L, k));
-  float akB = CELL_STATS(stats + statsAkB(L, k));
-  vec3 bk = cmsReadStats3(stats + statsBk(L, k, 0u));
   sk = 0.0f;
   lBk = 0.0f;
   zk = vec3(0.0f);
-  if (!cmsUsableDiagonal(akk) || !cmsIsFinite(akB) || !cmsIsFinite3(bk)) return false;
-  sk = 1.0f / sqrt(akk);
+  if (!cmsClusterUsable(stats, L, k)) return false;
+  sk = cmsScale(ridge, CELL_STATS(stats + statsAkk(L, k)));
   // sk * sB first: finite (both <= 2^63), and exactly 0 when B is out, so a huge A_kB cannot
   // turn into Inf * 0.
-  lBk = akB * (sk * sB) / lkk;
-  zk = bk * (sk / lkk);
+  lBk = CELL_STATS(stats + statsAkB(L, k)) * (sk * sB);
+  zk = cmsReadStats3(stats + statsBk(L, k, 0u)) * sk;
   return true;
 }
 
@@ -141,14 +155,27 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
   uint stats = cell * cellStatsStride(L);
   uint solution = cell * cellSolutionStride(L);
   float ridge = (cmsIsFinite(params.ridge) && params.ridge > 0.0f) ? params.ridge : 0.0f;
-  float diag = 1.0f + ridge;   // every scaled diagonal entry, ridge included
-  float lkk = sqrt(diag);      // the Cholesky diagonal of every cluster row
 
   // The BSDF technique, last row of the arrowhead.
   float aBB = CELL_STATS(stats + statsABB(L));
   vec3 bB = cmsReadStats3(stats + statsBB(L, 0u));
   bool useB = cmsUsableDiagonal(aBB) && cmsIsFinite3(bB);
-  float sB = useB ? 1.0f / sqrt(aBB) : 0.0f;
+
+  // The ridge r: ridge times the mean diagonal entry of the techniques in the system (summed in
+  // units of the largest entry M, so the sum cannot overflow).
+  float maxDiag = useB ? aBB : 0.0f;
+  for (uint k = 0u; k < L; ++k)
+    if (cmsClusterUsable(stats, L, k)) maxDiag = max(maxDiag, CELL_STATS(stats + statsAkk(L, k)));
+  float invMax = maxDiag > 0.0f ? 1.0f / maxDiag : 1.0f;
+  float meanOverMax = useB ? aBB * invMax : 0.0f;
+  float usable = useB ? 1.0f : 0.0f;
+  for (uint k = 0u; k < L; ++k)
+    if (cmsClusterUsable(stats, L, k)) {
+      meanOverMax += CELL_STATS(stats + statsAkk(L, k)) * invMax;
+      usable += 1.0f;
+    }
+  float r = usable > 0.0f ? (ridge * (meanOverMax / usable)) * maxDiag : 0.0f;
+  float sB = useB ? cmsScale(r, aBB) : 0.0f;
 
   // Forward pass: the Schur pivot of B and sum_k L_Bk z_k.
   uint inSystem = 0u;
@@ -158,13 +185,13 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
     float sk;
     float lBk;
     vec3 zk;
-    if (!cmsClusterRow(stats, L, k, sB, lkk, sk, lBk, zk)) continue;
+    if (!cmsClusterRow(stats, L, k, sB, r, sk, lBk, zk)) continue;
     inSystem += 1u;
     sumLBk2 += lBk * lBk;
     sumLBkZk += lBk * zk;
   }
-  float pivot = diag - sumLBk2;
-  if (useB && !(pivot > kSolvePivotFloor * diag)) {
+  float pivot = 1.0f - sumLBk2;
+  if (useB && !(pivot > kSolvePivotFloor)) {
     useB = false;   // singular: B adds nothing the clusters cannot express
     sB = 0.0f;
   }
@@ -188,7 +215,7 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
     float lBk;
     vec3 zk;
     vec3 alpha = vec3(0.0f);
-    if (cmsClusterRow(stats, L, k, sB, lkk, sk, lBk, zk)) alpha = (zk - lBk * yB) * (sk / lkk);
+    if (cmsClusterRow(stats, L, k, sB, r, sk, lBk, zk)) alpha = (zk - lBk * yB) * sk;
     allFinite = allFinite && cmsIsFinite3(alpha);
     cmsWriteSolution3(solution + solutionAlpha(L, k, 0u), alpha);
     weightSum += cmsSelectionWeight(alpha);

@@ -57,7 +57,7 @@ void main() {
     if (prevCell != kNoCell) {
       float w = sampleWeight(cvThroughput[path], path);
       addSampleToA(prevCell, j, pj, prevPdfB, peff, w);
-      if (j != kNoCell) addSampleToB(prevCell, j, le * cvBsdfCos[path], w * pj / (peff * peff), w * prevPdfB / (peff * peff));
+      if (j != kNoCell) addSampleToB(prevCell, j, le * cvBsdfCos[path], pj, prevPdfB, peff, w);
     }
   }
   if (hit.triangle == kNoHit) return;   // no environment light: the path ends
