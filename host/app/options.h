@@ -24,7 +24,7 @@ struct RenderOptions {
   double timeSeconds = -1.0;     // -1: not given; with spp too, stop at whichever comes first
   int width = 320, height = 240;
   int maxDepth = 5;              // Mitsuba convention, >= 1
-  std::string method = "pt-power";
+  std::string method = "cms";
   std::string backend = "vulkan";  // vulkan | cpu
   uint32_t seed = 0;
   std::string statsPath;         // --stats FILE.json

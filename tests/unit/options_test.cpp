@@ -46,7 +46,7 @@ TEST(Options, RenderDefaults) {
   EXPECT_EQ(o.width, 320);
   EXPECT_EQ(o.height, 240);
   EXPECT_EQ(o.maxDepth, 5);
-  EXPECT_EQ(o.method, "pt-power");
+  EXPECT_EQ(o.method, "cms");
   EXPECT_EQ(o.backend, "vulkan");
   EXPECT_EQ(o.seed, 0u);
   EXPECT_EQ(o.statsPath, "");
@@ -136,7 +136,7 @@ TEST(Options, HelpTextDocumentsOptionsDefaultsAndExamples) {
        {"mixtrace render [SCENE] [options]", "--out", "--spp", "--time", "--width", "--height", "--max-depth",
         "--method", "--backend", "--seed", "--stats", "--device", "--no-png", "--quiet", "-q", "--validation",
         "--general-pipelines", "--variance", "--help", "--version", "pt-uniform", "pt-power", "vulkan", "cpu",
-        "default: 16", "default: 320", "default: 240", "default: 5", "default: pt-power", "Mitsuba",
+        "default: 16", "default: 320", "default: 240", "default: 5", "default: cms", "Mitsuba",
         "1 = only emitters seen", "2 = direct lighting", "5 = up to four bounces", "Examples:"})
     EXPECT_NE(help.find(needle), std::string::npos) << "help text lacks: " << needle;
   EXPECT_EQ(kDefaultSpp, 16);

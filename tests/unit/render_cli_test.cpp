@@ -56,11 +56,10 @@ TEST_P(ShippedScene, RendersFiniteWithoutValidationErrors) {
   ASSERT_EQ(img.width, 64);
   ASSERT_EQ(img.height, 48);
   EXPECT_EQ(meta.ints["spp"], 4);
-  EXPECT_EQ(meta.strings["method"], "pt-power");
+  EXPECT_EQ(meta.strings["method"], "cms");   // the default: its CMS pipelines get validated too
   double sum = 0.0;
   for (float v : img.rgb) {
-    ASSERT_TRUE(std::isfinite(v));
-    ASSERT_GE(v, 0.0f);
+    ASSERT_TRUE(std::isfinite(v));   // (a control variate may make single pixels negative)
     sum += v;
   }
   EXPECT_GT(sum, 0.0) << "a shipped scene rendered black";
