@@ -100,8 +100,8 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   intersect_ = std::make_unique<ComputePipeline>(ctx, "intersect", layout, spec);
   // Without float atomics (or when asked) the statistics go through compare-and-swap loops.
   casAtomics_ = useCms && !(s.floatAtomics && ctx.floatAtomics());
-  shade_ = std::make_unique<ComputePipeline>(ctx, casAtomics_ ? "shade_cas" : "shade", layout, spec);
-  shadow_ = std::make_unique<ComputePipeline>(ctx, casAtomics_ ? "shadow_cas" : "shadow", layout, spec);
+  shade_ = std::make_unique<ComputePipeline>(ctx, casAtomics_ ? "shade_cas" : "shade", layout, spec, "shade");
+  shadow_ = std::make_unique<ComputePipeline>(ctx, casAtomics_ ? "shadow_cas" : "shadow", layout, spec, "shadow");
   accumulate_ = std::make_unique<ComputePipeline>(ctx, "accumulate", layout, spec);
 
   ctx.submitAndWait([&](VkCommandBuffer cmd) {

@@ -56,8 +56,8 @@ void DescriptorSet::bind(uint32_t binding, const Buffer& buffer) {
 }
 
 ComputePipeline::ComputePipeline(VulkanContext& ctx, const std::string& shader, VkPipelineLayout layout,
-                                 const std::vector<uint32_t>& specialization)
-    : ctx_(ctx), name_(shader) {
+                                 const std::vector<uint32_t>& specialization, const std::string& name)
+    : ctx_(ctx), name_(name.empty() ? shader : name) {
   const EmbeddedShader* spv = findEmbeddedShader(shader.c_str());
   if (!spv) throw Error("internal: shader '" + shader + "' was not built");
   VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
