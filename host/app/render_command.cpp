@@ -138,6 +138,10 @@ int runRender(const RenderOptions& o) {
   stats.cmsVerticesWithoutCell = counters.verticesWithoutCell;
   stats.cmsClusters = uint32_t(cms.clusters.clusters.size());
   stats.cmsAtomics = counters.statisticsAtomics;
+  if (counters.verticesWithoutCell > 0)
+    warn("the CMS cell table (" + std::to_string(counters.cellTableSize) + " cells) was full for " +
+         std::to_string(counters.verticesWithoutCell) +
+         " vertices; they used no control variate (still unbiased); a smaller --cells fits");
   stats.validationErrors = ctx ? ctx->validationErrors() : 0;
   stats.passMs = renderer.passTimesMs();
 
