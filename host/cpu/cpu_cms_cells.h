@@ -23,6 +23,7 @@
 #include "cms/cms_setup.h"
 #include "render/renderer.h"
 #include "shared/cluster_layout.h"
+#include "shared/cms_layouts.h"
 #include "shared/layouts.h"
 
 namespace mixtrace {
@@ -44,6 +45,10 @@ class CpuCmsCells {
   // Whether the vertices of sample pass `sampleIndex` add to the statistics: with relative
   // weighting the first pass only makes the pixel estimate the weights divide by.
   bool gathering(uint32_t sampleIndex) const { return !relativeWeighting_ || sampleIndex > 0; }
+  // ... and whether `cell` still gathers: below shared::kCellSampleCap vertices since its reset.
+  bool gathering(uint32_t sampleIndex, uint32_t cell) const {
+    return gathering(sampleIndex) && cellSamples_[cell].load(std::memory_order_relaxed) < shared::kCellSampleCap;
+  }
   // The weight of a sample of a vertex with path throughput `throughput` in `pixel` (cms.md §5):
   // shared/cms_layouts.h relativeSampleWeight, 1 without relative weighting, 0 while not gathering.
   double sampleWeight(glm::vec3 throughput, uint32_t pixel, uint32_t sampleIndex) const;

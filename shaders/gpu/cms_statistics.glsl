@@ -7,16 +7,19 @@
 #include "shared/cms_sampling.h"
 #include "shared/cms_layouts.h"
 
-// Whether this sample's vertices add to the statistics. With relative weighting the first sample
-// only makes the pixel estimate the weights divide by: before it, every pixel would look black and
-// every vertex would get the largest weight, and those statistics would outweigh all later ones.
-bool gatheringStatistics() { return !CMS_RELATIVE_WEIGHT || pc.sampleIndex > 0u; }
+// Whether a sample of a vertex in `cell` adds to the statistics. With relative weighting the first
+// sample only makes the pixel estimate the weights divide by: before it, every pixel would look
+// black and every vertex would get the largest weight, and those statistics would outweigh all
+// later ones. A cell that holds kCellSampleCap vertices stops gathering (shared/cms_layouts.h).
+bool gatheringStatistics(uint cell) {
+  return (!CMS_RELATIVE_WEIGHT || pc.sampleIndex > 0u) && cellSamples[cell] < kCellSampleCap;
+}
 
 // The weight of a sample of `path`'s vertex with throughput `beta` in its cell (cms.md §5): relative
 // to the estimate of the path's pixel made at the start of this iteration (shared/pixel_estimate.h),
 // or 1 (--relative-weighting off); 0 while not gathering.
-float sampleWeight(vec3 beta, uint path) {
-  if (!gatheringStatistics()) return 0.0;
+float sampleWeight(vec3 beta, uint path, uint cell) {
+  if (!gatheringStatistics(cell)) return 0.0;
   return CMS_RELATIVE_WEIGHT ? relativeSampleWeight(beta, pixelEstimate[pc.pixelOffset + path]) : 1.0;
 }
 
@@ -76,7 +79,7 @@ void settleLightSample(uint cell, uint k, float pk, float ck, float pB, vec3 f, 
   if (!(peff > 0.0)) return;
   if (CMS_CONTROL_VARIATE && cellSolutionValid(cell, L))
     radiance[path] -= beta * (cellAlpha(cell, L, k) * pk + cellAlphaB(cell, L) * pB) / peff;
-  float w = sampleWeight(beta, path);
+  float w = sampleWeight(beta, path, cell);
   addSampleToA(cell, k, pk, pB, peff, w);
   if (!isBlack(f)) addSampleToB(cell, k, f, pk, pB, peff, w);
 }

@@ -10,6 +10,13 @@ SHARED_BEGIN
 // Capacity of the per-cell systems; --max-clusters chooses L <= kMaxClusters.
 const uint kMaxClusters = 32u;
 
+// A cell stops gathering statistics once this many vertices added to them since its last reset
+// (a new selection resets it): its coefficients have converged, and every later sample would
+// only pay for the atomics. About the per-cell budget of the paper, which trains for 16 spp at
+// 640x480 and then stops updating. Measured (160x120, 64 spp, 2 seeds): relMSE unchanged in the
+// third digit on Veach MIS (0.0297) and many_lights (0.0079) with caps of 4096 and 16384.
+const uint kCellSampleCap = 4096u;
+
 // Statistics of one cell (cms.md §4), floats, L clusters plus the BSDF technique B. A is the
 // arrowhead matrix over (p_1 .. p_L, p_B): clusters are disjoint, so only A_kk, A_kB, A_BB exist.
 //   [0, L)            A_kk

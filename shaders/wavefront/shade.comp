@@ -55,7 +55,7 @@ void main() {
       radiance[path] -= cvThroughput[path] * g / peff;
     }
     if (prevCell != kNoCell) {
-      float w = sampleWeight(cvThroughput[path], path);
+      float w = sampleWeight(cvThroughput[path], path, prevCell);
       addSampleToA(prevCell, j, pj, prevPdfB, peff, w);
       if (j != kNoCell) addSampleToB(prevCell, j, le * cvBsdfCos[path], pj, prevPdfB, peff, w);
     }
@@ -93,7 +93,7 @@ void main() {
     grid.tableSize = pc.cellTableSize;
     cell = findOrInsertCell(grid, sh.position, sh.geometricNormal, sh.material);
     if (cell != kNoCell) {
-      if (gatheringStatistics()) atomicAdd(cellSamples[cell], 1u);
+      if (gatheringStatistics(cell)) atomicAdd(cellSamples[cell], 1u);
     }
     else atomicAdd(queues.verticesWithoutCell, 1u);
     cv = CMS_CONTROL_VARIATE && cellSolutionValid(cell, L);
@@ -180,7 +180,7 @@ void main() {
     // (cms.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
     if (cv) radiance[path] -= beta * cellAlphaB(cell, L);
     if (CMS_SELECTION && cell != kNoCell)
-      addStat(cell, statsABB(L), sampleWeight(beta, path));
+      addStat(cell, statsABB(L), sampleWeight(beta, path, cell));
     return;
   }
   vec3 bsdfCos = bsdfEval(bsdf, wo, wiLocal) * abs(wiLocal.z);

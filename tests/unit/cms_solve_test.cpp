@@ -1037,6 +1037,30 @@ TEST_F(CmsSolve, StatisticsOfARenderMatchTheReference) {
   EXPECT_GT(kept, 0u) << "some cells keep their selection and statistics";
 }
 
+// A cell stops gathering once it holds kCellSampleCap vertices: its count stops there (up to
+// the vertices of one pass that read the count at once), and the cell keeps being used.
+TEST_F(CmsSolve, CellsStopGatheringAtTheCap) {
+  PreparedScene prepared =
+      prepareScene(loadGltf(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/cornell_box.gltf"), LightSelection::Power);
+  RenderSettings settings;
+  settings.width = 64;
+  settings.height = 48;
+  settings.cells = 2;   // few cells, so they fill up
+  settings.cms = cmsMethodFor("cv");   // fixed selection: no resets
+  CmsScene cms = setUpClusters(prepared, 16, settings.cms.defaults);
+  WavefrontRenderer renderer(*ctx_, prepared, settings, &cms);
+  renderer.renderSamples(24);
+  const WavefrontRenderer::CmsCellState state = renderer.cmsCellState();
+  uint32_t atCap = 0, most = 0;
+  for (size_t slot = 0; slot < state.keys.size(); ++slot) {
+    if (state.keys[slot] == 0) continue;
+    most = std::max(most, state.samples[slot]);
+    atCap += state.samples[slot] >= shared::kCellSampleCap;
+  }
+  EXPECT_GT(atCap, 0u) << "no cell reached the cap (largest " << most << ")";
+  EXPECT_LE(most, shared::kCellSampleCap + settings.width * settings.height) << "a cell went on gathering";
+}
+
 // A cluster reached by almost no samples (A_kk ~ 1e-9 of the others: only a stray BSDF hit) next
 // to a well-sampled BSDF technique: without a ridge its alpha_k ~ -A_kB alpha_B / A_kk is huge,
 // and every light sample that picks it pays alpha_k / c_k (fireflies of 1e4 and more, seen on
