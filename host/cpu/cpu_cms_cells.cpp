@@ -41,13 +41,7 @@ CpuCmsCells::CpuCmsCells(const CmsScene& cms, const Bounds& sceneBounds, const R
   for (size_t i = 0; i < size_t(grid_.tableSize) * shared::cellStatsStride(L_); ++i)
     stats_[i].store(0.0, std::memory_order_relaxed);
   // The solve pass's parameters, as the Vulkan renderer sets them (recordSolve).
-  solveParams_.cellCount = grid_.tableSize;
-  solveParams_.clusterCount = L_;
-  solveParams_.minSamples = settings.minCellSamples;
-  solveParams_.flags = (settings.cms.learnSelection ? shared::kSolveLearnSelection : 0u) |
-                       (settings.cms.controlVariate ? shared::kSolveControlVariate : 0u);
-  solveParams_.ridge = settings.ridge;
-  solveParams_.defensive = settings.defensive;
+  solveParams_ = solveParamsFor(settings, grid_.tableSize, L_);
   // Every slot is solved once, so every cell, claimed later or not, starts with the defaults.
   for (uint32_t cell = 0; cell < grid_.tableSize; ++cell) solveCell(cell);
 }

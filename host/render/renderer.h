@@ -7,6 +7,7 @@
 
 #include "cms/cms_setup.h"
 #include "output/image.h"
+#include "shared/cms_layouts.h"
 
 namespace mixtrace {
 
@@ -27,6 +28,19 @@ struct RenderSettings {
   bool relativeWeighting = true; // statistics weighted by throughput relative to the pixel (cms.md §5)
   bool floatAtomics = true;      // Vulkan: float atomics for the statistics where the device has them
 };
+
+// The parameters of the per-cell CMS solve for these settings (both backends).
+inline shared::SolveParams solveParamsFor(const RenderSettings& s, uint32_t cellCount, uint32_t clusters) {
+  shared::SolveParams params{};
+  params.cellCount = cellCount;
+  params.clusterCount = clusters;
+  params.minSamples = s.minCellSamples;
+  params.flags = (s.cms.learnSelection ? shared::kSolveLearnSelection : 0u) |
+                 (s.cms.controlVariate ? shared::kSolveControlVariate : 0u);
+  params.ridge = s.ridge;
+  params.defensive = s.defensive;
+  return params;
+}
 
 struct RenderCounters {
   uint64_t nonFiniteSamples = 0;  // NaN/Inf samples caught; they enter the image as 0

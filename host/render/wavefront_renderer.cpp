@@ -186,15 +186,7 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
 }
 
 shared::SolveParams WavefrontRenderer::solveParams() const {
-  shared::SolveParams params{};
-  params.cellCount = cellTableSize_;
-  params.clusterCount = clusterCount_;
-  params.minSamples = settings_.minCellSamples;
-  params.flags = (settings_.cms.learnSelection ? shared::kSolveLearnSelection : 0u) |
-                 (settings_.cms.controlVariate ? shared::kSolveControlVariate : 0u);
-  params.ridge = settings_.ridge;
-  params.defensive = settings_.defensive;
-  return params;
+  return solveParamsFor(settings_, cellTableSize_, clusterCount_);
 }
 
 WavefrontRenderer::CmsCellState WavefrontRenderer::cmsCellState() const {

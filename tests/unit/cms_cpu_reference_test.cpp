@@ -19,6 +19,7 @@
 
 #include "compare/image_compare.h"
 #include "output/exr_io.h"
+#include "support/render_with_stats.h"
 #include "support/run_binary.h"
 #include "support/shipped_scenes.h"
 #include "support/test_level.h"
@@ -29,10 +30,7 @@ using namespace mixtrace::testing;
 
 namespace {
 
-struct Render {
-  Image mean, variance;
-  nlohmann::json stats;
-};
+using Render = RenderWithStats;
 
 std::string shippedScene(const std::string& stem) {
   for (const std::string& s : shippedScenes())
@@ -43,16 +41,8 @@ std::string shippedScene(const std::string& stem) {
 
 Render render(const std::string& scene, const std::string& backend, const std::string& method, const std::string& args,
               const fs::path& out) {
-  const fs::path stats = fs::path(out).replace_extension(".json");
-  RunResult r = runMixtrace("render " + scene + " --backend " + backend + " --method " + method + " " + args +
-                                " --variance -q --no-png --out " + out.string() + " --stats " + stats.string(),
-                            "", 3000);
-  Render result;
-  EXPECT_EQ(r.exitCode, 0) << backend << " " << method << ": " << r.stderrText;
-  if (r.exitCode != 0) return result;
-  result.mean = readExr(out.string(), nullptr, &result.variance);
-  std::ifstream f(stats);
-  result.stats = nlohmann::json::parse(f);
+  Render result = renderWithStats(scene + " --backend " + backend + " --method " + method + " " + args, out, 3000);
+  EXPECT_EQ(result.exitCode, 0) << backend << " " << method << ": " << result.stderrText;
   return result;
 }
 

@@ -21,6 +21,7 @@
 #include "compare/image_compare.h"
 #include "output/exr_io.h"
 #include "support/hard_scenes.h"
+#include "support/render_with_stats.h"
 #include "support/run_binary.h"
 #include "support/test_level.h"
 
@@ -30,30 +31,20 @@ using namespace mixtrace::testing;
 
 namespace {
 
-struct Render {
-  Image mean, variance;
-  nlohmann::json stats;
-  std::string stderrText;
-};
+using Render = RenderWithStats;
 
 // Writes `gltf` into this process's scratch directory and renders it with `method`. Fails the
 // calling test (fatally) when the binary exits non-zero or writes no variance.
 void render(const std::string& name, const std::string& gltf, const std::string& method, int seed, Render& out) {
   const fs::path dir = scratchDir("hard");
-  const fs::path scene = dir / (name + ".gltf"), image = dir / (name + "-" + method + ".exr"),
-                 stats = dir / (name + "-" + method + ".json");
+  const fs::path scene = dir / (name + ".gltf"), image = dir / (name + "-" + method + ".exr");
   writeFile(scene, gltf);
   const std::string size = byTestLevel<std::string>("--width 40 --height 30 --spp 256",
                                                     "--width 96 --height 72 --spp 1024");
-  const RunResult r = runMixtrace("render " + scene.string() + " " + size + " --method " + method + " --seed " +
-                                      std::to_string(seed) + " --variance -q --no-png --stats " + stats.string() +
-                                      " --out " + image.string(),
-                                  "", 600);
-  out.stderrText = r.stderrText;
-  ASSERT_EQ(r.exitCode, 0) << name << " " << method << ": " << r.stderrText;
-  out.mean = readExr(image.string(), nullptr, &out.variance);
+  out = renderWithStats(scene.string() + " " + size + " --method " + method + " --seed " + std::to_string(seed), image,
+                        600);
+  ASSERT_EQ(out.exitCode, 0) << name << " " << method << ": " << out.stderrText;
   ASSERT_EQ(out.variance.width, out.mean.width) << "no variance channels";
-  out.stats = nlohmann::json::parse(readText(stats));
 }
 
 size_t nonFiniteValues(const Image& image) {
