@@ -987,20 +987,27 @@ TEST_F(CmsSolve, SharedSolveCompiledAsCppAgreesWithTheGpu) {
   }
 }
 
+// The cells after rendering `spp` samples of a shipped scene at 64x48 with `method` on `cells`.
+WavefrontRenderer::CmsCellState renderedCells(VulkanContext& ctx, const std::string& scene, const std::string& method,
+                                              uint32_t cells, uint32_t spp) {
+  PreparedScene prepared =
+      prepareScene(loadGltf(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/" + scene), LightSelection::Power);
+  RenderSettings settings;
+  settings.width = 64;
+  settings.height = 48;
+  settings.cells = cells;
+  settings.cms = cmsMethodFor(method);
+  CmsScene cms = setUpClusters(prepared, 16, settings.cms.defaults);
+  WavefrontRenderer renderer(ctx, prepared, settings, &cms);
+  renderer.renderSamples(spp);
+  return renderer.cmsCellState();
+}
+
 // The statistics a render actually gathers (many_lights, cms, after 6 spp: the cells hold the
 // samples since the solve after spp 3, under the selections that solve kept or adopted), solved
 // by the solve pass and by the double-precision reference: same decisions, same coefficients.
 TEST_F(CmsSolve, StatisticsOfARenderMatchTheReference) {
-  PreparedScene prepared =
-      prepareScene(loadGltf(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/many_lights.gltf"), LightSelection::Power);
-  RenderSettings settings;
-  settings.width = 64;
-  settings.height = 48;
-  settings.cms = cmsMethodFor("cms");
-  CmsScene cms = setUpClusters(prepared, 16, settings.cms.defaults);
-  WavefrontRenderer renderer(*ctx_, prepared, settings, &cms);
-  renderer.renderSamples(6);
-  const WavefrontRenderer::CmsCellState state = renderer.cmsCellState();
+  const WavefrontRenderer::CmsCellState state = renderedCells(*ctx_, "many_lights.gltf", "cms", 16, 6);
   const uint32_t L = state.clusters;
   ASSERT_EQ(L, 16u);
   Batch batch(L);
@@ -1040,17 +1047,8 @@ TEST_F(CmsSolve, StatisticsOfARenderMatchTheReference) {
 // A cell stops gathering once it holds kCellSampleCap vertices: its count stops there (up to
 // the vertices of one pass that read the count at once), and the cell keeps being used.
 TEST_F(CmsSolve, CellsStopGatheringAtTheCap) {
-  PreparedScene prepared =
-      prepareScene(loadGltf(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/cornell_box.gltf"), LightSelection::Power);
-  RenderSettings settings;
-  settings.width = 64;
-  settings.height = 48;
-  settings.cells = 2;   // few cells, so they fill up
-  settings.cms = cmsMethodFor("cv");   // fixed selection: no resets
-  CmsScene cms = setUpClusters(prepared, 16, settings.cms.defaults);
-  WavefrontRenderer renderer(*ctx_, prepared, settings, &cms);
-  renderer.renderSamples(24);
-  const WavefrontRenderer::CmsCellState state = renderer.cmsCellState();
+  // Few cells (2 along the longest axis), so they fill up; cv keeps its selection: no resets.
+  const WavefrontRenderer::CmsCellState state = renderedCells(*ctx_, "cornell_box.gltf", "cv", 2, 24);
   uint32_t atCap = 0, most = 0;
   for (size_t slot = 0; slot < state.keys.size(); ++slot) {
     if (state.keys[slot] == 0) continue;
@@ -1058,7 +1056,7 @@ TEST_F(CmsSolve, CellsStopGatheringAtTheCap) {
     atCap += state.samples[slot] >= shared::kCellSampleCap;
   }
   EXPECT_GT(atCap, 0u) << "no cell reached the cap (largest " << most << ")";
-  EXPECT_LE(most, shared::kCellSampleCap + settings.width * settings.height) << "a cell went on gathering";
+  EXPECT_LE(most, shared::kCellSampleCap + 64u * 48u) << "a cell went on gathering";
 }
 
 // A cluster reached by almost no samples (A_kk ~ 1e-9 of the others: only a stray BSDF hit) next
