@@ -18,6 +18,11 @@ namespace {
 // Relative tolerance for values whose variance is exactly 0 in both images (float round-off in
 // accumulation order is the only legitimate difference there).
 constexpr double kExactRelativeTolerance = 1e-5;
+// Relative difference that never fails the per-pixel test, whatever the variance estimate: the
+// GPU film accumulates a running mean in float, which drifts by 1-3e-5 (relative) over 2048
+// samples of a constant pixel (a directly seen emitter), where the variance estimate is itself
+// round-off (measured: 312.5016 vs 312.5055 with sd 1e-4, CPU double vs GPU float).
+constexpr double kRoundOffRelativeTolerance = 1e-4;
 // Default per-pixel allowance for heavy-tailed outliers (see the header).
 constexpr double kDefaultFailFraction = 1e-3;
 constexpr size_t kMinimumAllowedFailures = 2;
@@ -143,7 +148,8 @@ ComparisonResult compareImages(const Image& a, const Image& varA, const Image& b
     sumB[c] += y;
     sumVar[c] += vx + vy;
     const double v = vx + vy;
-    const bool fails = v > 0.0 ? std::abs(x - y) > r.zThreshold * std::sqrt(v) : !agreeExactly(x, y);
+    const bool withinRoundOff = std::abs(x - y) <= kRoundOffRelativeTolerance * std::max(std::abs(x), std::abs(y));
+    const bool fails = v > 0.0 ? std::abs(x - y) > r.zThreshold * std::sqrt(v) && !withinRoundOff : !agreeExactly(x, y);
     if (fails) ++r.failed;
   }
   r.failFraction = r.channels ? double(r.failed) / double(r.channels) : 0.0;
