@@ -142,8 +142,9 @@ void main() {
       vec3 f = vec3(0.0);
       if (reachable) f = bsdfEval(bsdf, wo, wi) * abs(wi.z) * ls.radiance;
       vec3 contribution = beta * f / peff;
+      float ck = ls.pdf / max(pk, 1e-38);   // the cell's c_k (ls.pdf = c_k p_k)
       if (cmsTerms && !reachable) {
-        settleLightSample(cell, k, pk, ls.pdf / max(pk, 1e-38), 0.0, f, beta, path);
+        settleLightSample(cell, k, pk, ck, 0.0, f, beta, path);
       } else if (!isBlack(contribution) || cmsTerms) {
         // CMS: whether the BSDF could have sampled this point (p_B) depends on its visibility, so
         // the sample's control-variate and statistics terms go with the shadow ray.
@@ -158,7 +159,7 @@ void main() {
         s.throughput = beta;
         s.pk = pk;
         s.pB = pB;
-        s.ck = ls.pdf / max(pk, 1e-38);
+        s.ck = ck;
         s.flags = cmsTerms ? kShadowRayCms : 0u;
         s.pad = 0.0;
         uint slot = atomicAdd(queues.shadowCount, 1u);
