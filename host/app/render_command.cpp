@@ -72,6 +72,13 @@ int runRender(const RenderOptions& o) {
   settings.floatAtomics = o.floatAtomics;
   CmsScene cms;
   if (settings.cms.clusters) cms = setUpClusters(prepared, uint32_t(o.maxClusters), settings.cms.defaults);
+  std::string estimator = o.method;
+  if (cmsReducesToPlainMis(settings.cms, cms)) {
+    info("cms: the scene's lights form one cluster, so there is no light selection to learn and the control "
+         "variate alone does not pay; rendering with plain MIS (pt-power's estimator; --method cv forces it)");
+    settings.cms = CmsMethod{};
+    estimator = "pt-power";
+  }
   std::unique_ptr<VulkanContext> ctx;
   std::unique_ptr<Renderer> backend;
   if (o.backend == "cpu") {
@@ -94,12 +101,16 @@ int runRender(const RenderOptions& o) {
   Progress progress(!o.quiet);
   auto renderStart = Clock::now();
   uint32_t batch = 1;
+  // The learning methods' last iteration gathers no statistics, so they need to know the total; a
+  // time-limited render re-estimates it from its pace (an open-ended plan until it has one).
+  renderer.planSamples(timed ? 0 : targetSpp);
   while (renderer.samplesPerPixel() < targetSpp) {
     uint32_t n = std::min(batch, targetSpp - renderer.samplesPerPixel());
     renderer.renderSamples(n);
     double elapsed = secondsSince(renderStart);
     if (timed && elapsed >= o.timeSeconds) break;
     double perSample = elapsed / renderer.samplesPerPixel();
+    if (timed) renderer.planSamples(uint32_t(std::min(double(targetSpp), std::clamp(o.timeSeconds / perSample, 1.0, 1e9))));
     double budget = timed ? std::min(0.25, o.timeSeconds - elapsed) : 0.25;
     batch = uint32_t(std::clamp(budget / std::max(perSample, 1e-6), 1.0, 256.0));
     double fraction = timed ? elapsed / o.timeSeconds : double(renderer.samplesPerPixel()) / targetSpp;
@@ -138,6 +149,7 @@ int runRender(const RenderOptions& o) {
   stats.cmsVerticesWithoutCell = counters.verticesWithoutCell;
   stats.cmsClusters = uint32_t(cms.clusters.clusters.size());
   stats.cmsAtomics = counters.statisticsAtomics;
+  stats.estimator = estimator;
   if (counters.verticesWithoutCell > 0)
     warn("the CMS cell table (" + std::to_string(counters.cellTableSize) + " cells) was full for " +
          std::to_string(counters.verticesWithoutCell) +

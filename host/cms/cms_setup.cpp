@@ -46,4 +46,8 @@ CmsScene setUpClusters(PreparedScene& scene, uint32_t maxClusters, LightSelectio
   return cms;
 }
 
+bool cmsReducesToPlainMis(const CmsMethod& method, const CmsScene& scene) {
+  return method.learnSelection && method.controlVariate && scene.clusters.clusters.size() <= 1;
+}
+
 }  // namespace mixtrace

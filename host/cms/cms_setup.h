@@ -27,4 +27,12 @@ struct CmsScene {
 // Clusters the scene's lights and records in each LightGpu its cluster and in-cluster pmf.
 CmsScene setUpClusters(PreparedScene& scene, uint32_t maxClusters, LightSelection defaults);
 
+// Whether the method cms, on a scene with these clusters, is better run as plain MIS (pt-power's
+// estimator): with at most one cluster there is no selection to learn, and the control variate
+// alone measured no gain there, while it costs about 1.3x per sample on lavapipe (cms.md §7 note
+// in benchmarks/README.md: relMSE at 64 spp, 160x120, cms vs pt-power: Cornell box 1.00x, Veach
+// MIS lit by only one of its lights 1.00x and 0.99x). The research methods learned and cv run as
+// asked.
+bool cmsReducesToPlainMis(const CmsMethod& method, const CmsScene& scene);
+
 }  // namespace mixtrace

@@ -44,7 +44,9 @@ class CpuCmsCells {
 
   // Whether the vertices of sample pass `sampleIndex` add to the statistics: with relative
   // weighting the first pass only makes the pixel estimate the weights divide by.
-  bool gathering(uint32_t sampleIndex) const { return !relativeWeighting_ || sampleIndex > 0; }
+  bool gathering(uint32_t sampleIndex) const { return passGathers_ && (!relativeWeighting_ || sampleIndex > 0); }
+  // Whether the next sample pass gathers at all (cms/training_schedule.h).
+  void setGathering(bool gathers) { passGathers_ = gathers; }
   // ... and whether `cell` still gathers: below shared::kCellSampleCap vertices since its reset.
   bool gathering(uint32_t sampleIndex, uint32_t cell) const {
     return gathering(sampleIndex) && cellSamples_[cell].load(std::memory_order_relaxed) < shared::kCellSampleCap;
@@ -88,6 +90,7 @@ class CpuCmsCells {
   CellGridSetup grid_;
   bool controlVariate_;
   bool relativeWeighting_;
+  bool passGathers_ = true;
   shared::SolveParams solveParams_{};
   std::vector<float> defaults_;
   std::vector<shared::ClusterGpu> clusters_;

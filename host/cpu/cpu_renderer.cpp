@@ -161,12 +161,12 @@ void CpuRenderer::renderSamples(uint32_t count) {
     return;
   }
   for (uint32_t s = 0; s < count; ++s) {
+    cms_->setGathering(schedule_.gathers(spp_));
     renderPass(1);
     spp_ += 1;
-    // Training iterations of doubling length (cms.md §7): after samples 1, 3, 7, 15, ... the cells
-    // are solved, then the pixel estimate of the relative weights is refreshed.
-    const uint32_t done = spp_;
-    if (((done + 1) & done) == 0) {
+    // Training iterations of doubling length (cms.md §7; cms/training_schedule.h): the cells are
+    // solved, then the pixel estimate of the relative weights is refreshed.
+    if (schedule_.solvesAfter(spp_)) {
       cms_->solveAll();
       if (settings_.relativeWeighting) cms_->refreshPixelEstimate(filmMeans(), settings_.width, settings_.height);
     }

@@ -20,6 +20,7 @@ void writeStatsJson(const std::string& path, const RenderStats& s) {
   nlohmann::json j;
   j["scene"] = s.scene;
   j["method"] = s.method;
+  j["estimator"] = s.estimator.empty() ? s.method : s.estimator;
   j["backend"] = s.backend;
   j["device"] = s.device;
   j["features"] = s.features;

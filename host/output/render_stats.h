@@ -8,6 +8,7 @@ namespace mixtrace {
 
 struct RenderStats {
   std::string scene, method, backend, device, features;
+  std::string estimator;   // what ran: the method, or pt-power where cms reduces to it (cms/cms_setup.h)
   uint32_t width = 0, height = 0, maxDepth = 0, seed = 0;
   uint32_t spp = 0;
   double renderSeconds = 0.0;   // sample passes only, excluding set-up

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cms/cms_setup.h"
+#include "cms/training_schedule.h"
 #include "output/image.h"
 #include "shared/cms_layouts.h"
 
@@ -64,6 +65,14 @@ class Renderer {
   // Time per pass in milliseconds (GPU timestamp queries; empty where there are no passes).
   virtual std::map<std::string, double> passTimesMs() const = 0;
   virtual std::string deviceName() const = 0;
+
+  // How many samples per pixel the render will take in all (an estimate for a time-limited one),
+  // so the learning methods solve only where an iteration follows and the last iteration gathers
+  // no statistics (cms/training_schedule.h). Unplanned renders solve at every boundary.
+  void planSamples(uint32_t total) { schedule_.plan(total); }
+
+ protected:
+  TrainingSchedule schedule_;
 };
 
 }  // namespace mixtrace

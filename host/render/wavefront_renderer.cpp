@@ -167,6 +167,7 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   pc.gridOrigin = gridOrigin_;
   pc.gridInvCellSize = gridInvCellSize_;
   pc.sceneScale = sceneScale_;
+  pc.gatherStatistics = schedule_.gathers(sampleIndex) ? 1u : 0u;
 
   dispatch(cmd, *generate_, pc, groupsFor(paths));
   for (uint32_t depth = 1; depth <= settings_.maxDepth; ++depth) {
@@ -230,10 +231,8 @@ void WavefrontRenderer::renderSamples(uint32_t count) {
     for (uint32_t s = 0; s < n; ++s) {
       for (uint32_t offset = 0; offset < pixelCount_; offset += pathCount_)
         recordSample(cmd_, spp_ + s, offset, std::min(pathCount_, pixelCount_ - offset));
-      // Training iterations of doubling length (1, 2, 4, ... spp; cms.md §7): after samples
-      // 1, 3, 7, 15, ... the cells are solved.
-      const uint32_t done = spp_ + s + 1;
-      if (solver_ && ((done + 1) & done) == 0) recordSolve(cmd_, true);
+      // Training iterations of doubling length (cms.md §7; cms/training_schedule.h).
+      if (solver_ && schedule_.solvesAfter(spp_ + s + 1)) recordSolve(cmd_, true);
     }
     vkCheck(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};

@@ -10,9 +10,14 @@
 // Whether a sample of a vertex in `cell` adds to the statistics. With relative weighting the first
 // sample only makes the pixel estimate the weights divide by: before it, every pixel would look
 // black and every vertex would get the largest weight, and those statistics would outweigh all
-// later ones. A cell that holds kCellSampleCap vertices stops gathering (shared/cms_layouts.h).
+// later ones. No sample gathers when no later solve reads its statistics (the host's training
+// schedule), and a cell that holds kCellSampleCap vertices stops gathering (shared/cms_layouts.h).
+bool passGathersStatistics() {
+  return pc.gatherStatistics != 0u && (!CMS_RELATIVE_WEIGHT || pc.sampleIndex > 0u);
+}
+
 bool gatheringStatistics(uint cell) {
-  return (!CMS_RELATIVE_WEIGHT || pc.sampleIndex > 0u) && cellSamples[cell] < kCellSampleCap;
+  return passGathersStatistics() && cellSamples[cell] < kCellSampleCap;
 }
 
 // The weight of a sample of `path`'s vertex with throughput `beta` in its cell (cms.md §5): relative
@@ -80,6 +85,7 @@ void settleLightSample(uint cell, uint k, float pk, float ck, float pB, vec3 f, 
   if (CMS_CONTROL_VARIATE && cellSolutionValid(cell, L))
     radiance[path] -= beta * (cellAlpha(cell, L, k) * pk + cellAlphaB(cell, L) * pB) / peff;
   float w = sampleWeight(beta, path, cell);
+  if (w == 0.0) return;
   addSampleToA(cell, k, pk, pB, peff, w);
   if (!isBlack(f)) addSampleToB(cell, k, f, pk, pB, peff, w);
 }

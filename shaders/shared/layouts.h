@@ -178,6 +178,7 @@ struct PassConstants {
   vec3 gridOrigin;     // CMS: the cell grid's origin (scene bounds minimum)
   float gridInvCellSize;
   float sceneScale;    // the scene's coordinate magnitude (shared/ray_offset.h)
+  uint gatherStatistics;  // CMS: 1 when a later solve reads this sample pass's statistics
 };
 
 const uint kWorkgroupSize = 64u;

@@ -54,10 +54,10 @@ void main() {
       if (j != kNoCell) g += cellAlpha(prevCell, L, j) * pj;
       radiance[path] -= cvThroughput[path] * g / peff;
     }
-    if (prevCell != kNoCell) {
+    if (prevCell != kNoCell && passGathersStatistics()) {
       float w = sampleWeight(cvThroughput[path], path, prevCell);
-      addSampleToA(prevCell, j, pj, prevPdfB, peff, w);
-      if (j != kNoCell) addSampleToB(prevCell, j, le * cvBsdfCos[path], pj, prevPdfB, peff, w);
+      if (w > 0.0) addSampleToA(prevCell, j, pj, prevPdfB, peff, w);
+      if (w > 0.0 && j != kNoCell) addSampleToB(prevCell, j, le * cvBsdfCos[path], pj, prevPdfB, peff, w);
     }
   }
   if (hit.triangle == kNoHit) return;   // no environment light: the path ends
@@ -180,7 +180,7 @@ void main() {
     // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
     // (cms.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
     if (cv) radiance[path] -= beta * cellAlphaB(cell, L);
-    if (CMS_SELECTION && cell != kNoCell)
+    if (CMS_SELECTION && cell != kNoCell && passGathersStatistics())
       addStat(cell, statsABB(L), sampleWeight(beta, path, cell));
     return;
   }

@@ -1059,6 +1059,37 @@ TEST_F(CmsSolve, CellsStopGatheringAtTheCap) {
   EXPECT_LE(most, shared::kCellSampleCap + 64u * 48u) << "a cell went on gathering";
 }
 
+// With a planned total, the last iteration gathers nothing: no solve would read it
+// (cms/training_schedule.h). Planned 16: solves after 1, 3 and 7; samples 7..15 leave the cells'
+// statistics and counts exactly as the solve after 7 left them. Unplanned, they go on gathering.
+TEST_F(CmsSolve, ThePlannedLastIterationLeavesTheCellsAlone) {
+  PreparedScene prepared =
+      prepareScene(loadGltf(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/veach_mis.gltf"), LightSelection::Power);
+  RenderSettings settings;
+  settings.width = 64;
+  settings.height = 48;
+  settings.cms = cmsMethodFor("cms");
+  CmsScene cms = setUpClusters(prepared, 16, settings.cms.defaults);
+  for (bool planned : {true, false}) {
+    WavefrontRenderer renderer(*ctx_, prepared, settings, &cms);
+    if (planned) renderer.planSamples(16);
+    renderer.renderSamples(7);
+    const WavefrontRenderer::CmsCellState trained = renderer.cmsCellState();
+    renderer.renderSamples(9);
+    const WavefrontRenderer::CmsCellState after = renderer.cmsCellState();
+    uint64_t vertices = 0;
+    for (uint32_t n : trained.samples) vertices += n;
+    ASSERT_GT(vertices, 0u) << "the training iterations gathered nothing";
+    if (planned) {
+      EXPECT_EQ(after.samples, trained.samples);
+      EXPECT_EQ(after.stats, trained.stats);
+      EXPECT_EQ(after.solution, trained.solution) << "a solve ran after the last useful one";
+    } else {
+      EXPECT_NE(after.stats, trained.stats) << "an open-ended render stopped gathering";
+    }
+  }
+}
+
 // A cluster reached by almost no samples (A_kk ~ 1e-9 of the others: only a stray BSDF hit) next
 // to a well-sampled BSDF technique: without a ridge its alpha_k ~ -A_kB alpha_B / A_kk is huge,
 // and every light sample that picks it pays alpha_k / c_k (fireflies of 1e4 and more, seen on

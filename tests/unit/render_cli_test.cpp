@@ -140,6 +140,33 @@ TEST(NoLights, RendersBlackWithWarning) {
   for (float v : img.rgb) EXPECT_EQ(v, 0.0f);
 }
 
+// cms on a scene whose lights form one cluster runs plain MIS (cms/cms_setup.h), says so, and
+// reports it; with several clusters it runs cms; the research method cv runs as asked.
+TEST(DefaultMethod, ReducesToPlainMisOnlyWithOneCluster) {
+  fs::path dir = scratchDir("reduce");
+  auto render = [&](const std::string& scene, const std::string& method, RunResult* out = nullptr) {
+    fs::path stats = dir / (scene + method + ".json");
+    RunResult r = runMixtrace("render " + std::string(MIXTRACE_SOURCE_DIR) + "/scenes/" + scene +
+                              " --width 32 --height 24 --spp 2 --no-png --method " + method + " --out " +
+                              (dir / "x.exr").string() + " --stats " + stats.string());
+    EXPECT_EQ(r.exitCode, 0) << r.stderrText;
+    if (out) *out = r;
+    return readJson(stats);
+  };
+  RunResult cornell;
+  nlohmann::json j = render("cornell_box.gltf", "cms", &cornell);
+  EXPECT_EQ(j["method"], "cms");
+  EXPECT_EQ(j["estimator"], "pt-power");
+  EXPECT_FALSE(j.contains("cms_clusters"));
+  EXPECT_NE(cornell.stderrText.find("one cluster"), std::string::npos) << cornell.stderrText;
+  j = render("veach_mis.gltf", "cms");
+  EXPECT_EQ(j["estimator"], "cms");
+  EXPECT_EQ(j["cms_clusters"].get<int>(), 4);
+  j = render("cornell_box.gltf", "cv");
+  EXPECT_EQ(j["estimator"], "cv");
+  EXPECT_EQ(j["cms_clusters"].get<int>(), 1);
+}
+
 TEST(TimeBudget, StopsNearTheRequestedTime) {
   fs::path dir = scratchDir("time");
   auto start = std::chrono::steady_clock::now();

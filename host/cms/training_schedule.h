@@ -1,0 +1,38 @@
+#pragma once
+// When the learning methods (learned, cv, cms) solve their cells and which samples gather the
+// statistics a solve reads (cms.md §7). Training runs in iterations of doubling length: the cells
+// are solved after samples 1, 3, 7, 15, ... But a solve pays only if an iteration follows that is
+// at least as long as the statistics behind it: with 64 planned samples, solving after sample 63
+// would serve one sample. So the last iteration runs from the last useful solve to the end, and
+// its samples gather nothing: no solve reads them. That is about half of every render's samples,
+// which then pay none of the statistics' cost. Both backends follow this one schedule.
+#include <cstdint>
+
+namespace mixtrace {
+
+class TrainingSchedule {
+ public:
+  // Samples per pixel the render plans; 0 = open-ended (solve at every boundary, always gather).
+  // A time-limited render updates its estimate as it goes.
+  void plan(uint32_t totalSamples) { planned_ = totalSamples; }
+  uint32_t planned() const { return planned_; }
+
+  // Whether the cells are solved once `done` samples per pixel are complete.
+  bool solvesAfter(uint32_t done) const {
+    if (done == 0 || ((done + 1) & done) != 0) return false;   // not 2^k - 1
+    return planned_ == 0 || uint64_t(done) * 2 + 1 <= planned_;  // the next iteration fits
+  }
+
+  // Whether sample pass `index` (0-based) adds to the statistics: only when the solve at the end of
+  // its iteration happens.
+  bool gathers(uint32_t index) const {
+    uint64_t boundary = 1;   // the end of index's iteration: the smallest 2^k - 1 >= index + 1
+    while (boundary < uint64_t(index) + 1) boundary = boundary * 2 + 1;
+    return boundary > UINT32_MAX || solvesAfter(uint32_t(boundary));
+  }
+
+ private:
+  uint32_t planned_ = 0;
+};
+
+}  // namespace mixtrace
