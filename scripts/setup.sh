@@ -10,7 +10,7 @@ PACKAGES=(
   glslang-tools spirv-tools
   libglfw3-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev libimath-dev
-  libgtest-dev python3 python3-numpy
+  libgtest-dev python3 python3-numpy python3-matplotlib
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

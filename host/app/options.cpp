@@ -144,6 +144,10 @@ const RenderOptionSpec kOptionSpecs[] = {
      [](RenderOptions& o, const std::string& n, const std::string& v) {
        o.relativeWeighting = oneOf(n, v, {"on", "off"}, "setting") == "on";
      }},
+    {"--train-spp", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) {
+       o.trainSpp = static_cast<int>(parseInteger(n, v, 0, 1 << 30, "an integer >= 0"));
+     }},
     {"--float-atomics", nullptr, true,
      [](RenderOptions& o, const std::string& n, const std::string& v) {
        o.floatAtomics = oneOf(n, v, {"on", "off"}, "setting") == "on";
@@ -170,6 +174,8 @@ const CompareOptionSpec kCompareOptionSpecs[] = {
     {"--quiet", "-q", false, [](CompareOptions& o, const std::string&, const std::string&) { o.quiet = true; }},
     {"--error-only", nullptr, false,
      [](CompareOptions& o, const std::string&, const std::string&) { o.errorOnly = true; }},
+    {"--error-map", nullptr, true,
+     [](CompareOptions& o, const std::string&, const std::string& v) { o.errorMap = v; }},
 };
 
 template <typename Options, size_t N>
@@ -364,6 +370,9 @@ std::string helpText() {
           "  --relative-weighting on|off\n"
           "                       learned/cv/cms: weight the cells' statistics by\n"
           "                       path throughput relative to the pixel (default: on)\n"
+          "  --train-spp N        learned/cv/cms: no solve after N spp; the rest of\n"
+          "                       the render uses what was learned by then (default:\n"
+          "                       0 = train through about the first half)\n"
           "  --float-atomics on|off\n"
           "                       learned/cv/cms on Vulkan: add the statistics with\n"
           "                       float atomics (on, where the device has them) or\n"
@@ -408,6 +417,9 @@ std::string helpText() {
           "  -q, --quiet          no summary line; the exit status tells\n"
           "  --error-only         only print 'relMSE X' of A against the reference B\n"
           "                       (no test, no variance channels needed; exit 0)\n"
+          "  --error-map FILE.pfm with --error-only: also write A's per-pixel\n"
+          "                       relative squared error (the terms relMSE averages)\n"
+          "                       as a one-channel PFM image, for false-colour plots\n"
           "  Exit status: "
        << kCompareExitAgree << " the images agree, " << kCompareExitDiffer << " they differ, " << kCompareExitError
        << " error (bad\n"

@@ -37,6 +37,7 @@ struct RenderOptions {
   int maxClusters = 16;          // --max-clusters: CMS light clusters (techniques), 1..32
   int cells = 16;                // --cells: CMS cells along the longest scene axis
   bool relativeWeighting = true; // --relative-weighting on|off: CMS statistics weighting (cms.md §5)
+  int trainSpp = 0;              // --train-spp N: no CMS solve after N spp (0 = no limit)
   bool floatAtomics = true;      // --float-atomics on|off: CMS statistics with float atomics or CAS loops
 };
 
@@ -49,6 +50,7 @@ struct CompareOptions {
   std::string reportJson;        // --json FILE: write the full result as JSON
   bool quiet = false;            // -q/--quiet: no summary line, only the exit code
   bool errorOnly = false;        // --error-only: print relMSE of A against B; no variance needed
+  std::string errorMap;          // --error-map FILE.pfm: write A's per-pixel relative squared error
 };
 
 // Exit codes of `mixtrace compare` (documented in --help), like diff(1).

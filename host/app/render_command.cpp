@@ -70,6 +70,7 @@ int runRender(const RenderOptions& o) {
   settings.cells = uint32_t(o.cells);
   settings.relativeWeighting = o.relativeWeighting;
   settings.floatAtomics = o.floatAtomics;
+  settings.trainSpp = uint32_t(o.trainSpp);
   CmsScene cms;
   if (settings.cms.clusters) cms = setUpClusters(prepared, uint32_t(o.maxClusters), settings.cms.defaults);
   std::string estimator = o.method;
@@ -150,6 +151,7 @@ int runRender(const RenderOptions& o) {
   stats.cmsClusters = uint32_t(cms.clusters.clusters.size());
   stats.cmsAtomics = counters.statisticsAtomics;
   stats.estimator = estimator;
+  stats.cmsGatheringSpp = counters.gatheringSamples;
   if (counters.verticesWithoutCell > 0)
     warn("the CMS cell table (" + std::to_string(counters.cellTableSize) + " cells) was full for " +
          std::to_string(counters.verticesWithoutCell) +

@@ -16,16 +16,25 @@ class TrainingSchedule {
   // A time-limited render updates its estimate as it goes.
   void plan(uint32_t totalSamples) { planned_ = totalSamples; }
   uint32_t planned() const { return planned_; }
+  // --train-spp: no solve after this many samples (0 = no limit): the paper trains for a fixed
+  // budget (16 spp) and then renders with what it learned.
+  void limitTraining(uint32_t samples) { trainLimit_ = samples; }
+  // With relative weighting the first sample gathers nothing: it makes the pixel estimate the
+  // weights divide by (before it, every pixel would look black and every vertex get the largest
+  // weight, and those statistics would outweigh all later ones).
+  void skipFirstSample(bool skip) { skipFirst_ = skip; }
 
   // Whether the cells are solved once `done` samples per pixel are complete.
   bool solvesAfter(uint32_t done) const {
-    if (done == 0 || ((done + 1) & done) != 0) return false;   // not 2^k - 1
-    return planned_ == 0 || uint64_t(done) * 2 + 1 <= planned_;  // the next iteration fits
+    if (done == 0 || ((done + 1) & done) != 0) return false;      // not 2^k - 1
+    if (trainLimit_ != 0 && done > trainLimit_) return false;      // training is over
+    return planned_ == 0 || uint64_t(done) * 2 + 1 <= planned_;    // the next iteration fits
   }
 
   // Whether sample pass `index` (0-based) adds to the statistics: only when the solve at the end of
   // its iteration happens.
   bool gathers(uint32_t index) const {
+    if (index == 0 && skipFirst_) return false;
     uint64_t boundary = 1;   // the end of index's iteration: the smallest 2^k - 1 >= index + 1
     while (boundary < uint64_t(index) + 1) boundary = boundary * 2 + 1;
     return boundary > UINT32_MAX || solvesAfter(uint32_t(boundary));
@@ -33,6 +42,8 @@ class TrainingSchedule {
 
  private:
   uint32_t planned_ = 0;
+  uint32_t trainLimit_ = 0;
+  bool skipFirst_ = false;
 };
 
 }  // namespace mixtrace

@@ -88,12 +88,11 @@ double sidakTwoSidedThreshold(double alpha, size_t tests) {
   return normalUpperQuantile(0.5 * perTest);
 }
 
-double relativeMse(const Image& image, const Image& reference) {
+std::vector<double> relativeSquaredErrors(const Image& image, const Image& reference) {
   if (!sameSize(image, reference))
     throw Error("cannot compare images of different sizes (" + sizeText(image) + " and " + sizeText(reference) +
                 ")");
   const size_t pixels = image.pixelCount();
-  if (pixels == 0) return 0.0;
   std::vector<double> perPixel(pixels);
   for (size_t p = 0; p < pixels; ++p) {
     double sum = 0.0;
@@ -103,6 +102,13 @@ double relativeMse(const Image& image, const Image& reference) {
     }
     perPixel[p] = sum / 3.0;
   }
+  return perPixel;
+}
+
+double relativeMse(const Image& image, const Image& reference) {
+  std::vector<double> perPixel = relativeSquaredErrors(image, reference);
+  const size_t pixels = perPixel.size();
+  if (pixels == 0) return 0.0;
   // Drop the largest 0.1%: a handful of fireflies would otherwise dominate the mean. NaN errors
   // sort as largest (so they are dropped first) by treating them as +infinity.
   for (double& e : perPixel)

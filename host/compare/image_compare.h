@@ -99,4 +99,8 @@ double relativeMse(const Image& image, const Image& reference);
 // The same for two EXR files (B the reference); throws Error for unreadable or mismatched files.
 double relativeMseOfExrFiles(const std::string& pathA, const std::string& pathB);
 
+// The per-pixel terms relMSE averages (before trimming): the relative squared error of each pixel,
+// averaged over its channels, in row-major order.
+std::vector<double> relativeSquaredErrors(const Image& image, const Image& reference);
+
 }  // namespace mixtrace

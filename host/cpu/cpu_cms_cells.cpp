@@ -57,8 +57,8 @@ uint32_t CpuCmsCells::findCell(glm::vec3 position, glm::vec3 geometricNormal, ui
   return cell;
 }
 
-double CpuCmsCells::sampleWeight(glm::vec3 throughput, uint32_t pixel, uint32_t sampleIndex) const {
-  if (!gathering(sampleIndex)) return 0.0;
+double CpuCmsCells::sampleWeight(glm::vec3 throughput, uint32_t pixel) const {
+  if (!passGathers_) return 0.0;
   return relativeWeighting_ ? double(shared::relativeSampleWeight(throughput, pixelEstimate_[pixel])) : 1.0;
 }
 

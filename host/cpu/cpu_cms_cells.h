@@ -42,18 +42,16 @@ class CpuCmsCells {
   // (counted: such a vertex uses no control variate and adds no statistics).
   uint32_t findCell(glm::vec3 position, glm::vec3 geometricNormal, uint32_t material);
 
-  // Whether the vertices of sample pass `sampleIndex` add to the statistics: with relative
-  // weighting the first pass only makes the pixel estimate the weights divide by.
-  bool gathering(uint32_t sampleIndex) const { return passGathers_ && (!relativeWeighting_ || sampleIndex > 0); }
-  // Whether the next sample pass gathers at all (cms/training_schedule.h).
+  // Whether the vertices of the current sample pass add to the statistics (set per pass from the
+  // training schedule, cms/training_schedule.h).
   void setGathering(bool gathers) { passGathers_ = gathers; }
   // ... and whether `cell` still gathers: below shared::kCellSampleCap vertices since its reset.
-  bool gathering(uint32_t sampleIndex, uint32_t cell) const {
-    return gathering(sampleIndex) && cellSamples_[cell].load(std::memory_order_relaxed) < shared::kCellSampleCap;
+  bool gathering(uint32_t cell) const {
+    return passGathers_ && cellSamples_[cell].load(std::memory_order_relaxed) < shared::kCellSampleCap;
   }
   // The weight of a sample of a vertex with path throughput `throughput` in `pixel` (cms.md §5):
   // shared/cms_layouts.h relativeSampleWeight, 1 without relative weighting, 0 while not gathering.
-  double sampleWeight(glm::vec3 throughput, uint32_t pixel, uint32_t sampleIndex) const;
+  double sampleWeight(glm::vec3 throughput, uint32_t pixel) const;
 
   // The statistics of one sample (cms.md §4), k = shared::kNoCell for a sample in no cluster's
   // support: A_kk += w pk^2 / peff^2, A_kB += w pk pB / peff^2, A_BB += w pB^2 / peff^2 and

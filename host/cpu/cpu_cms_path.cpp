@@ -28,7 +28,7 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
   CpuCmsCells& cells = *ctx.cells;
   const uint L = cells.clusterCount();
   const bool controlVariate = cells.controlVariate();
-  auto weightOf = [&](vec3 throughput) { return cells.sampleWeight(throughput, ctx.pixel, ctx.sampleIndex); };
+  auto weightOf = [&](vec3 throughput) { return cells.sampleWeight(throughput, ctx.pixel); };
 
   vec3 radiance(0.0f), beta(1.0f);
   PendingBsdfSample pending;
@@ -57,7 +57,7 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
         if (j != kNoCell) g += cellAlpha(pending.cell, L, j) * pj;
         radiance -= pending.throughput * g / peff;
       }
-      if (pending.cell != kNoCell && cells.gathering(ctx.sampleIndex, pending.cell)) {
+      if (pending.cell != kNoCell && cells.gathering(pending.cell)) {
         double w = weightOf(pending.throughput);
         cells.addSampleToA(pending.cell, j, pj, pending.pdf, peff, w);
         if (j != kNoCell) cells.addSampleToB(pending.cell, j, le * pending.bsdfCos, pj, pending.pdf, peff, w);
@@ -76,7 +76,7 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
     vec3 next = offsetRayOrigin(sh.position, sh.geometricNormal);
 
     uint cell = cells.findCell(sh.position, sh.geometricNormal, sh.material);
-    if (cell != kNoCell && cells.gathering(ctx.sampleIndex, cell)) cells.countVertex(cell);
+    if (cell != kNoCell && cells.gathering(cell)) cells.countVertex(cell);
     const bool cv = controlVariate && cellSolutionValid(cell, L);
     if (cv) radiance += beta * cellAlphaSum(cell, L);
 
@@ -129,7 +129,7 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
           float peffSeen = ls.pdf + pBSeen;
           if (cmsTerms && peffSeen > 0.0f) {
             if (cv) radiance -= beta * (cellAlpha(cell, L, k) * pk + cellAlphaB(cell, L) * pBSeen) / peffSeen;
-            if (cells.gathering(ctx.sampleIndex, cell)) {
+            if (cells.gathering(cell)) {
               double w = weightOf(beta);
               cells.addSampleToA(cell, k, pk, pBSeen, peffSeen, w);
               if (visible) cells.addSampleToB(cell, k, f, pk, pBSeen, peffSeen, w);
@@ -152,7 +152,7 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
       // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
       // (cms.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
       if (cv) radiance -= beta * cellAlphaB(cell, L);
-      if (cell != kNoCell && cells.gathering(ctx.sampleIndex, cell))
+      if (cell != kNoCell && cells.gathering(cell))
         cells.addSampleToA(cell, kNoCell, 0.0, 1.0, 1.0, weightOf(beta));
       break;
     }

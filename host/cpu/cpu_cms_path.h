@@ -20,7 +20,6 @@ struct CmsPathContext {
   uint32_t maxDepth = 5;
   uint32_t lightCount = 0;
   uint32_t pixel = 0;             // for the relative statistics weight
-  uint32_t sampleIndex = 0;       // the sample pass (statistics are gathered from pass 1 on)
 };
 
 // The radiance of the path from `origin` along `direction`; `rng` continues the camera sample's

@@ -102,6 +102,7 @@ CpuRenderer::CpuRenderer(const PreparedScene& scene, const RenderSettings& setti
       film_(size_t(settings.width) * settings.height) {
   if (settings.maxDepth < 1) throw Error("--max-depth must be at least 1");
   if (settings.cms.clusters && !cms) throw Error("internal: a CMS method without light clusters");
+  setUpTraining(settings);
   gSharedScene = &scene_;
   if (settings.cms.clusters && !cms->clusters.clusters.empty())
     cms_ = std::make_unique<CpuCmsCells>(*cms, scene.scene.bounds, settings, uint32_t(film_.size()));
@@ -133,7 +134,6 @@ void CpuRenderer::renderTile(uint32_t tile, uint32_t count, RenderCounters& loca
           ctx.maxDepth = settings_.maxDepth;
           ctx.lightCount = lightCount_;
           ctx.pixel = pixel;
-          ctx.sampleIndex = sampleIndex;
           l = traceCmsPath(camera_.position, direction, rng, ctx, local);
         } else {
           l = tracePath(camera_.position, direction, rng, settings_.maxDepth, lightCount_, local);

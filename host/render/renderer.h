@@ -28,6 +28,7 @@ struct RenderSettings {
   float defensive = 0.2f;        // share of the default selection in a learned c_k
   bool relativeWeighting = true; // statistics weighted by throughput relative to the pixel (cms.md §5)
   bool floatAtomics = true;      // Vulkan: float atomics for the statistics where the device has them
+  uint32_t trainSpp = 0;         // no solve after this many samples (0 = train through the first half)
 };
 
 // The parameters of the per-cell CMS solve for these settings (both backends).
@@ -51,6 +52,7 @@ struct RenderCounters {
   uint64_t cellTableSize = 0;         // CMS: slots of the table
   uint64_t verticesWithoutCell = 0;   // CMS: vertices refused by a full table (they get no CV)
   std::string statisticsAtomics;      // CMS on Vulkan: "float" atomics or "cas" loops
+  uint32_t gatheringSamples = 0;      // CMS: sample passes that gathered statistics
 };
 
 class Renderer {
@@ -72,6 +74,10 @@ class Renderer {
   void planSamples(uint32_t total) { schedule_.plan(total); }
 
  protected:
+  void setUpTraining(const RenderSettings& s) {
+    schedule_.skipFirstSample(s.relativeWeighting);
+    schedule_.limitTraining(s.trainSpp);
+  }
   TrainingSchedule schedule_;
 };
 

@@ -56,7 +56,9 @@ class WavefrontRenderer : public Renderer {
   void recordSolve(VkCommandBuffer cmd, bool timed);
   shared::SolveParams solveParams() const;
   void dispatch(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, uint32_t groups);
-  void dispatchIndirect(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, VkDeviceSize offset);
+  // `label` names the pass in the GPU timings (default: the pipeline's name).
+  void dispatchIndirect(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, VkDeviceSize offset,
+                        const char* label = nullptr);
 
   VulkanContext& ctx_;
   RenderSettings settings_;
@@ -64,6 +66,7 @@ class WavefrontRenderer : public Renderer {
   uint32_t pixelCount_;
   uint32_t pathCount_;
   uint32_t spp_ = 0;
+  uint32_t gatheringSamples_ = 0;   // CMS: sample passes that gathered statistics
   GpuScene scene_;
   DescriptorSet set_;
   Buffer rayOrigin_, rayDirection_, throughput_, radiance_, rng_, misPdf_, hits_, rayQueue_, shadowQueue_, queueState_, film_;

@@ -7,14 +7,11 @@
 #include "shared/cms_sampling.h"
 #include "shared/cms_layouts.h"
 
-// Whether a sample of a vertex in `cell` adds to the statistics. With relative weighting the first
-// sample only makes the pixel estimate the weights divide by: before it, every pixel would look
-// black and every vertex would get the largest weight, and those statistics would outweigh all
-// later ones. No sample gathers when no later solve reads its statistics (the host's training
-// schedule), and a cell that holds kCellSampleCap vertices stops gathering (shared/cms_layouts.h).
-bool passGathersStatistics() {
-  return pc.gatherStatistics != 0u && (!CMS_RELATIVE_WEIGHT || pc.sampleIndex > 0u);
-}
+// Whether a sample of a vertex in `cell` adds to the statistics: when the host's training schedule
+// says this sample pass gathers (cms/training_schedule.h: not the first with relative weighting,
+// not the last iteration) and the cell holds fewer than kCellSampleCap vertices
+// (shared/cms_layouts.h).
+bool passGathersStatistics() { return pc.gatherStatistics != 0u; }
 
 bool gatheringStatistics(uint cell) {
   return passGathersStatistics() && cellSamples[cell] < kCellSampleCap;

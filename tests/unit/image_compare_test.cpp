@@ -237,6 +237,44 @@ TEST_F(RenderedImages, ErrorOnlyPrintsTheRelMse) {
   EXPECT_EQ(same.out, "relMSE 0\n");
 }
 
+// --error-map writes relMSE's per-pixel terms as a PFM (rows bottom to top): they average to the
+// untrimmed relMSE, and each matches the formula for its pixel.
+TEST_F(RenderedImages, ErrorMapHoldsThePerPixelTerms) {
+  const fs::path map = dir() / "error.pfm";
+  const CliResult cli =
+      runCompare(oneLightMissing().path + " " + allLights().path + " --error-only --error-map " + map.string());
+  ASSERT_EQ(cli.exitCode, 0) << cli.err;
+  std::ifstream in(map, std::ios::binary);
+  std::string kind;
+  int width = 0, height = 0;
+  double scale = 0.0;
+  in >> kind >> width >> height >> scale;
+  in.get();
+  ASSERT_EQ(kind, "Pf");
+  const Image& a = oneLightMissing().mean;
+  const Image& b = allLights().mean;
+  ASSERT_EQ(width, a.width);
+  ASSERT_EQ(height, a.height);
+  EXPECT_LT(scale, 0.0) << "little-endian";
+  std::vector<float> rows(size_t(width) * height);
+  in.read(reinterpret_cast<char*>(rows.data()), std::streamsize(rows.size() * sizeof(float)));
+  ASSERT_TRUE(in) << "short PFM";
+  const std::vector<double> expected = relativeSquaredErrors(a, b);
+  double sum = 0.0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const float value = rows[size_t(height - 1 - y) * width + x];
+      const double want = expected[size_t(y) * width + x];
+      ASSERT_NEAR(value, want, 1e-5 * want + 1e-12) << x << "," << y;
+      sum += value;
+    }
+  EXPECT_GT(sum, 0.0);
+  const double r0 = (double(a.rgb[0]) - b.rgb[0]) * (double(a.rgb[0]) - b.rgb[0]) / (double(b.rgb[0]) * b.rgb[0] + 0.01);
+  EXPECT_LE(r0 / 3.0, expected[0] + 1e-12) << "a pixel's term averages its channels";
+  EXPECT_NE(runCompare(oneLightMissing().path + " " + allLights().path + " --error-map " + map.string()).exitCode, 0)
+      << "--error-map without --error-only";
+}
+
 TEST_F(RenderedImages, CliInputErrorsExitWithTwo) {
   const auto expectError = [](const CliResult& r, const std::string& needle) {
     EXPECT_EQ(r.exitCode, 2) << r.err;

@@ -58,6 +58,14 @@ TEST(Options, RenderDefaults) {
   EXPECT_FALSE(o.variance);
   EXPECT_TRUE(o.relativeWeighting);
   EXPECT_TRUE(o.floatAtomics);
+  EXPECT_EQ(o.trainSpp, 0);
+}
+
+TEST(Options, TrainingLengthAndErrorMap) {
+  EXPECT_EQ(parse({"render", "--train-spp", "15"}).render.trainSpp, 15);
+  expectOneLineMentioning(errorOf({"render", "--train-spp", "-3"}), "--train-spp");
+  expectOneLineMentioning(errorOf({"render", "--train-spp", "many"}), "--train-spp");
+  EXPECT_EQ(parse({"compare", "a.exr", "b.exr", "--error-only", "--error-map", "e.pfm"}).compare.errorMap, "e.pfm");
 }
 
 TEST(Options, RelativeWeightingOnOff) {
