@@ -11,6 +11,7 @@ PACKAGES=(
   libglfw3-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev libimath-dev
   libgtest-dev python3 python3-numpy python3-matplotlib
+  xvfb xauth
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

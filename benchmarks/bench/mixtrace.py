@@ -2,14 +2,20 @@
 import hashlib
 import json
 import os
+import shutil
 import subprocess
+import tempfile
 
 
 class Mixtrace:
     def __init__(self, binary):
         if not os.path.exists(binary):
-            raise SystemExit(f"benchmark: no mixtrace binary at {binary} (build first: bash scripts/build.sh)")
-        self.binary = binary
+            raise SystemExit(f"benchmark: no mixtrace binary at {binary} (build first: bash scripts/setup.sh)")
+        # A private copy: rebuilding the project while a long benchmark runs must not change (or
+        # break) the binary under measurement.
+        self._dir = tempfile.mkdtemp(prefix="mixtrace-bench-bin-")
+        self.binary = os.path.join(self._dir, "mixtrace")
+        shutil.copy2(binary, self.binary)
 
     def identity(self):
         """What the references depend on: the exact binary (any change to the renderer rebuilds it)."""

@@ -10,6 +10,7 @@
 #include "app/options.h"
 #include "app/render_command.h"
 #include "util/error.h"
+#include "viewer/viewer.h"
 
 int main(int argc, char** argv) {
   using namespace mixtrace;
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
       case Command::Version: std::printf("mixtrace %s\n", MIXTRACE_VERSION); return 0;
       case Command::Render: return runRender(cl.render);
       case Command::Compare: return runCompare(cl.compare);
+      case Command::View: return runViewer(cl.render, cl.viewScript);
     }
   } catch (const Error& e) {
     std::fprintf(stderr, "mixtrace: error: %s\n", e.what());

@@ -261,6 +261,28 @@ ParsedCommandLine parseRender(const std::vector<std::string>& args) {
   return result;
 }
 
+// view: render's options, plus --script FILE.
+ParsedCommandLine parseView(std::vector<std::string> args) {
+  std::string script;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--script") {
+      if (i + 1 >= args.size() || looksLikeOption(args[i + 1])) throw Error("option --script needs a value");
+      script = args[i + 1];
+      args.erase(args.begin() + long(i), args.begin() + long(i) + 2);
+      --i;
+    } else if (args[i].rfind("--script=", 0) == 0) {
+      script = args[i].substr(9);
+      if (script.empty()) throw Error("option --script needs a value");
+      args.erase(args.begin() + long(i));
+      --i;
+    }
+  }
+  ParsedCommandLine result = parseRender(args);
+  if (result.command == Command::Render) result.command = Command::View;
+  result.viewScript = script;
+  return result;
+}
+
 ParsedCommandLine parseCompare(const std::vector<std::string>& args) {
   ParsedCommandLine result;
   result.command = asksForHelp(args) ? Command::Help : Command::Compare;
@@ -301,11 +323,12 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
   }
   if (command == "render") return parseRender(std::vector<std::string>(args.begin() + 1, args.end()));
   if (command == "compare") return parseCompare(std::vector<std::string>(args.begin() + 1, args.end()));
+  if (command == "view") return parseView(std::vector<std::string>(args.begin() + 1, args.end()));
   if (looksLikeOption(command))
     throw Error("unknown option '" + command + "' before a command (usage: mixtrace render [SCENE] [options])");
   if (endsWith(command, ".gltf") || endsWith(command, ".glb"))
     throw Error("unknown command '" + command + "' (did you mean 'mixtrace render " + command + "'?)");
-  throw Error("unknown command '" + command + "' (commands: render, compare, help; see 'mixtrace --help')");
+  throw Error("unknown command '" + command + "' (commands: render, compare, view, help; see 'mixtrace --help')");
 }
 
 std::string helpText() {
@@ -319,6 +342,7 @@ std::string helpText() {
           "  mixtrace compare A.exr B.exr [options]\n"
           "                                     test whether two renders made with\n"
           "                                     --variance estimate the same image\n"
+          "  mixtrace view [SCENE] [options]    open a window and watch SCENE converge\n"
           "  mixtrace help | --help | -h         print this text (or: render --help)\n"
           "  mixtrace --version                  print the version\n"
           "\n"
@@ -397,6 +421,20 @@ std::string helpText() {
           "  --validation         enable the Vulkan validation layer (slow)\n"
           "  --general-pipelines  do not specialise the GPU pipelines on the\n"
           "                       scene's features (testing aid; same image)\n"
+          "\n"
+          "View (mixtrace view [SCENE] [options]):\n"
+          "  Renders progressively into a window with the same passes as render\n"
+          "  and takes render's options (--width/--height: the film, shown scaled;\n"
+          "  --spp N: stop accumulating at N; --out: where P saves). Keys: 1-5\n"
+          "  method (pt-uniform, pt-power, learned, cv, cms); V split view of two\n"
+          "  methods at equal time, shift+1-5 its right-hand method; G or F1-F6\n"
+          "  view: image, variance, cells, alpha sum, likely light, cell samples;\n"
+          "  P save EXR + PNG; R reset camera; Esc quit. Mouse: left drag orbit,\n"
+          "  right drag pan, wheel zoom; W/A/S/D/Q/E fly.\n"
+          "  --script FILE        replay input from FILE instead of waiting for a\n"
+          "                       user (one event per line: frames N, key K,\n"
+          "                       drag left|right DX DY, scroll DY, resize W H,\n"
+          "                       screenshot FILE.png, quit)\n"
           "\n"
           "Compare (mixtrace compare A.exr B.exr [options]):\n"
           "  Both images need the variance channels written by render --variance.\n"

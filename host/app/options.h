@@ -2,6 +2,7 @@
 // Command-line grammar of the mixtrace binary:
 //   mixtrace render [SCENE] [options]
 //   mixtrace compare A.exr B.exr [options]
+//   mixtrace view [SCENE] [options] [--script FILE]
 //   mixtrace help | --help | -h        (also: mixtrace render --help)
 //   mixtrace --version
 // Parsing only: nothing here prints, touches files or resolves defaults that need the scene.
@@ -11,7 +12,7 @@
 
 namespace mixtrace {
 
-enum class Command { Render, Compare, Help, Version };
+enum class Command { Render, Compare, View, Help, Version };
 
 // Samples per pixel used when neither --spp nor --time is given. The help text quotes it, so the
 // renderer should use this constant rather than its own literal.
@@ -60,8 +61,9 @@ constexpr int kCompareExitError = 2;
 
 struct ParsedCommandLine {
   Command command = Command::Help;
-  RenderOptions render;
+  RenderOptions render;          // render, and view (which takes the same options)
   CompareOptions compare;
+  std::string viewScript;        // view --script FILE: replayed input (host/viewer/input.h)
 };
 
 // argv[0] is the program name and is ignored. Throws mixtrace::Error with a one-line message

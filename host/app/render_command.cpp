@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <memory>
 
-#include "output/exr_io.h"
-#include "output/png_preview.h"
+#include "app/method_setup.h"
+#include "output/render_output.h"
 #include "output/render_stats.h"
 #include "cms/cms_setup.h"
 #include "cpu/cpu_renderer.h"
@@ -26,12 +26,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-
-LightSelection selectionFor(const std::string& method) {
-  if (method == "pt-uniform") return LightSelection::Uniform;
-  if (method == "pt-power") return LightSelection::Power;
-  return cmsMethodFor(method).defaults;
-}
 
 std::string formatRate(double perSecond) {
   char b[64];
@@ -59,34 +53,18 @@ int runRender(const RenderOptions& o) {
   const std::string outPath = o.out.empty() ? fs::path(scenePath).stem().string() + ".exr" : o.out;
 
   auto setupStart = Clock::now();
-  PreparedScene prepared = prepareScene(loadGltf(scenePath), selectionFor(o.method));
-  RenderSettings settings;
-  settings.width = uint32_t(o.width);
-  settings.height = uint32_t(o.height);
-  settings.maxDepth = uint32_t(o.maxDepth);
-  settings.seed = o.seed;
-  settings.generalPipelines = o.generalPipelines;
-  settings.cms = cmsMethodFor(o.method);
-  settings.cells = uint32_t(o.cells);
-  settings.relativeWeighting = o.relativeWeighting;
-  settings.floatAtomics = o.floatAtomics;
-  settings.trainSpp = uint32_t(o.trainSpp);
-  CmsScene cms;
-  if (settings.cms.clusters) cms = setUpClusters(prepared, uint32_t(o.maxClusters), settings.cms.defaults);
-  std::string estimator = o.method;
-  if (cmsReducesToPlainMis(settings.cms, cms)) {
-    info("cms: the scene's lights form one cluster, so there is no light selection to learn and the control "
-         "variate alone does not pay; rendering with plain MIS (pt-power's estimator; --method cv forces it)");
-    settings.cms = CmsMethod{};
-    estimator = "pt-power";
-  }
+  MethodSetup setup = setUpMethod(loadGltf(scenePath), o, o.method);
+  const PreparedScene& prepared = setup.prepared;
+  const RenderSettings& settings = setup.settings;
+  const CmsScene& cms = setup.cms;
+  const std::string& estimator = setup.estimator;
   std::unique_ptr<VulkanContext> ctx;
   std::unique_ptr<Renderer> backend;
   if (o.backend == "cpu") {
-    backend = std::make_unique<CpuRenderer>(prepared, settings, settings.cms.clusters ? &cms : nullptr);
+    backend = std::make_unique<CpuRenderer>(prepared, settings, setup.clusters());
   } else {
     ctx = std::make_unique<VulkanContext>(ContextOptions{o.device, o.validation});
-    backend = std::make_unique<WavefrontRenderer>(*ctx, prepared, settings, settings.cms.clusters ? &cms : nullptr);
+    backend = std::make_unique<WavefrontRenderer>(*ctx, prepared, settings, setup.clusters());
   }
   Renderer& renderer = *backend;
   double setupSeconds = secondsSince(setupStart);
@@ -159,14 +137,8 @@ int runRender(const RenderOptions& o) {
   stats.validationErrors = ctx ? ctx->validationErrors() : 0;
   stats.passMs = renderer.passTimesMs();
 
-  ExrMetadata meta;
-  meta.ints["spp"] = int(stats.spp);
-  meta.floats["renderSeconds"] = float(renderSeconds);
-  meta.strings["method"] = o.method;
-  meta.strings["scene"] = prepared.scene.name;
-  meta.strings["renderer"] = std::string("mixtrace ") + MIXTRACE_VERSION;
-  writeExr(outPath, image, meta, o.variance ? &variance : nullptr);
-  if (o.png) writePngPreview(defaultPreviewPath(outPath), image);
+  writeRenderOutput(outPath, image, o.variance ? &variance : nullptr,
+                    RenderOutputInfo{o.method, prepared.scene.name, int(stats.spp), renderSeconds}, o.png);
   if (!o.statsPath.empty()) writeStatsJson(o.statsPath, stats);
 
   info("wrote " + outPath + ": " + std::to_string(stats.spp) + " spp in " + std::to_string(renderSeconds) + " s, " +

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "shared/display.h"
 #include "util/error.h"
 
 // libtinygltf imports the stb writer from libstb.so rather than exporting it, and mixtrace_core
@@ -18,21 +19,13 @@
 #pragma GCC diagnostic pop
 
 namespace mixtrace {
-namespace {
-
-// IEC 61966-2-1 sRGB encoding: linear segment below 0.0031308, power 1/2.4 above.
-float srgbOetf(float linear) {
-  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
-
-}  // namespace
 
 unsigned char linearToSrgb8(float linear, float exposure) {
   if (!std::isfinite(linear)) return 0;
   float value = linear * exposure;
   if (!(value > 0.0f)) return 0;  // also catches NaN from a non-finite exposure
   if (value > 1.0f) value = 1.0f;
-  return static_cast<unsigned char>(std::lround(srgbOetf(value) * 255.0f));
+  return static_cast<unsigned char>(std::lround(shared::srgbEncode(value) * 255.0f));
 }
 
 void writePngPreview(const std::string& path, const Image& image, float exposure) {
@@ -43,6 +36,12 @@ void writePngPreview(const std::string& path, const Image& image, float exposure
   const int rowBytes = image.width * 3;
   if (!stbi_write_png(path.c_str(), image.width, image.height, 3, bytes.data(), rowBytes))
     throw Error("cannot write PNG '" + path + "'");
+}
+
+void writePng8(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb) {
+  if (width <= 0 || height <= 0 || rgb.size() != size_t(width) * size_t(height) * 3)
+    throw Error("cannot write PNG '" + path + "': its size does not match its pixels");
+  if (!stbi_write_png(path.c_str(), width, height, 3, rgb.data(), width * 3)) throw Error("cannot write PNG '" + path + "'");
 }
 
 std::string defaultPreviewPath(const std::string& exrPath) {

@@ -1,6 +1,7 @@
 #pragma once
 // An 8-bit sRGB PNG next to the EXR, for a quick look; the EXR stays the result.
 #include <string>
+#include <vector>
 
 #include "output/image.h"
 
@@ -12,6 +13,9 @@ namespace mixtrace {
 void writePngPreview(const std::string& path, const Image& image, float exposure = 1.0f);
 
 // `exrPath` with its extension replaced by .png (appended when it has none).
+// 8-bit sRGB bytes as they are (the viewer's screenshots), 3 per pixel, top row first.
+void writePng8(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb);
+
 std::string defaultPreviewPath(const std::string& exrPath);
 
 // The 8-bit value writePngPreview stores for one linear channel value (exposed for tests).

@@ -57,10 +57,10 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   clusterDefaults_ = makeBuffer(ctx, useCms ? cms->clusters.defaultSelection : std::vector<float>{1.0f}, "cluster defaults");
   clusters_ = makeBuffer(ctx, useCms ? cms->clusters.clusters : std::vector<shared::ClusterGpu>(1), "clusters");
   clusterLights_ = makeBuffer(ctx, useCms ? cms->clusterLights : std::vector<shared::ClusterLightGpu>(1), "cluster lights");
-  cvCell_ = Buffer(ctx, cvPaths * sizeof(uint32_t), "path state (CMS cells)");
-  cvThroughput_ = Buffer(ctx, cvPaths * sizeof(glm::vec3), "path state (CMS throughput)");
-  cvBsdfCos_ = Buffer(ctx, cvPaths * sizeof(glm::vec3), "path state (CMS bsdf cos)");
+  cvState_ = Buffer(ctx, cvPaths * sizeof(shared::CvPathState), "path state (CMS)");
   pixelEstimate_ = Buffer(ctx, size_t(useCms ? pixelCount_ : 1) * sizeof(glm::vec3), "CMS pixel estimate");
+  firstCell_ = Buffer(ctx, size_t(useCms ? pixelCount_ : 1) * sizeof(uint32_t), "CMS first-hit cells");
+  displayPlaceholder_ = Buffer(ctx, sizeof(uint32_t), "display placeholder");
   if (useCms) {
     gridOrigin_ = grid.origin;
     gridInvCellSize_ = grid.invCellSize;
@@ -72,10 +72,10 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   set_.bind(BINDING_CLUSTER_DEFAULTS, clusterDefaults_);
   set_.bind(BINDING_CLUSTERS, clusters_);
   set_.bind(BINDING_CLUSTER_LIGHTS, clusterLights_);
-  set_.bind(BINDING_CV_CELL, cvCell_);
-  set_.bind(BINDING_CV_THROUGHPUT, cvThroughput_);
-  set_.bind(BINDING_CV_BSDF_COS, cvBsdfCos_);
+  set_.bind(BINDING_CV_STATE, cvState_);
   set_.bind(BINDING_PIXEL_ESTIMATE, pixelEstimate_);
+  set_.bind(BINDING_FIRST_CELL, firstCell_);
+  set_.bind(BINDING_DISPLAY, displayPlaceholder_);
   set_.bind(BINDING_RAY_ORIGIN, rayOrigin_);
   set_.bind(BINDING_RAY_DIRECTION, rayDirection_);
   set_.bind(BINDING_THROUGHPUT, throughput_);
@@ -88,7 +88,8 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   set_.bind(BINDING_QUEUE_STATE, queueState_);
   set_.bind(BINDING_FILM, film_);
 
-  std::vector<uint32_t> spec = (s.generalPipelines ? FeatureSet::general() : scene.features).specialization();
+  spec_ = (s.generalPipelines ? FeatureSet::general() : scene.features).specialization();
+  std::vector<uint32_t>& spec = spec_;
   spec[SPEC_CMS_SELECTION] = useCms;
   spec[SPEC_CMS_CONTROL_VARIATE] = useCms && s.cms.controlVariate;
   spec[SPEC_CMS_RELATIVE_WEIGHT] = useCms && s.relativeWeighting;
@@ -113,6 +114,7 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
     cellSamples_.fillZero(cmd);
     cellSolution_.fillZero(cmd);   // no cell has a selection yet
     pixelEstimate_.fillZero(cmd);
+    vkCmdFillBuffer(cmd, firstCell_.handle(), 0, VK_WHOLE_SIZE, shared::kNoCell);
     computeBarrier(cmd);
     // Solving the empty statistics gives every cell the default selection and no control variate.
     if (solver_) {
@@ -250,6 +252,22 @@ void WavefrontRenderer::renderSamples(uint32_t count) {
     spp_ += n;
     count -= n;
   }
+}
+
+void WavefrontRenderer::restart(const shared::CameraGpu& camera) {
+  vkCheck(vkDeviceWaitIdle(ctx_.device()), "vkDeviceWaitIdle");
+  shared::CameraGpu c = camera;
+  c.width = settings_.width;
+  c.height = settings_.height;
+  scene_.camera.upload(&c, sizeof(c));
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    film_.fillZero(cmd);
+    vkCmdFillBuffer(cmd, firstCell_.handle(), 0, VK_WHOLE_SIZE, shared::kNoCell);
+    computeBarrier(cmd);
+  });
+  // The training schedule starts over: the cells keep what they learned, and the next solves
+  // refine it with statistics weighted by the new image's pixel estimate.
+  spp_ = 0;
 }
 
 Image WavefrontRenderer::readImage(Image* variance) const {

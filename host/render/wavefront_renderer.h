@@ -11,6 +11,7 @@
 
 #include "output/image.h"
 #include "render/gpu_scene.h"
+#include "shared/bindings.h"
 #include "cms/gpu_solver.h"
 #include "render/renderer.h"
 #include "scene/prepared_scene.h"
@@ -49,6 +50,14 @@ class WavefrontRenderer : public Renderer {
   };
   CmsCellState cmsCellState() const;
 
+  // For the viewer (host/viewer): start accumulating again from `camera` (the film is cleared;
+  // learned cells are world-space and stay), and the state its display pass reads.
+  void restart(const shared::CameraGpu& camera);
+  const DescriptorSet& descriptors() const { return set_; }
+  void bindDisplay(const Buffer& display) { set_.bind(BINDING_DISPLAY, display); }
+  uint32_t clusterCount() const { return clusterCount_; }
+  const std::vector<uint32_t>& specialization() const { return spec_; }
+
  private:
   void recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths);
   // CMS, between training iterations: solve every cell from its statistics so far, and refresh
@@ -78,7 +87,9 @@ class WavefrontRenderer : public Renderer {
   glm::vec3 gridOrigin_{0.0f};
   float gridInvCellSize_ = 1.0f;
   Buffer cellKeys_, cellStats_, cellSamples_, cellSolution_, clusterDefaults_, clusters_, clusterLights_;
-  Buffer cvCell_, cvThroughput_, cvBsdfCos_, pixelEstimate_;
+  Buffer cvState_, pixelEstimate_, firstCell_;
+  Buffer displayPlaceholder_;   // bound until a viewer binds its display buffer
+  std::vector<uint32_t> spec_;  // the pipelines' specialization constants
   std::unique_ptr<CellSolver> solver_;
   std::unique_ptr<ComputePipeline> pixelEstimatePass_;
   std::unique_ptr<ComputePipeline> generate_, prepare_, intersect_, shade_, shadow_, accumulate_;

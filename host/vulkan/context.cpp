@@ -44,16 +44,20 @@ std::string lower(std::string s) {
   return s;
 }
 
-int computeQueueFamily(VkPhysicalDevice pd, uint32_t* timestampBits) {
+// A queue family with compute and, given a surface, presentation to it.
+int computeQueueFamily(VkPhysicalDevice pd, uint32_t* timestampBits, VkSurfaceKHR surface = VK_NULL_HANDLE) {
   uint32_t n = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
   std::vector<VkQueueFamilyProperties> families(n);
   vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, families.data());
-  for (uint32_t i = 0; i < n; ++i)
-    if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
+  for (uint32_t i = 0; i < n; ++i) {
+    VkBool32 presents = VK_TRUE;
+    if (surface) vkGetPhysicalDeviceSurfaceSupportKHR(pd, i, surface, &presents);
+    if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && presents) {
       *timestampBits = families[i].timestampValidBits;
       return int(i);
     }
+  }
   return -1;
 }
 
@@ -102,6 +106,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
       warn("--validation: VK_LAYER_KHRONOS_validation is not installed (package vulkan-validationlayers)");
     }
   }
+  for (const std::string& e : options.instanceExtensions) extensions.push_back(e.c_str());
   VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   ici.pApplicationInfo = &app;
   ici.enabledLayerCount = uint32_t(layers.size());
@@ -123,6 +128,8 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
     if (create) vkCheck(create(instance_, &mci, nullptr, &messenger_), "vkCreateDebugUtilsMessengerEXT");
   }
 
+  if (options.makeSurface) surface_ = options.makeSurface(instance_);
+
   uint32_t count = 0;
   r = vkEnumeratePhysicalDevices(instance_, &count, nullptr);
   if (r != VK_SUCCESS || count == 0)
@@ -139,8 +146,9 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
     vkGetPhysicalDeviceProperties(devices[i], &p);
     names += (names.empty() ? "" : ", ") + std::to_string(i) + ": " + p.deviceName;
     uint32_t tsBits = 0;
-    bool usable = p.apiVersion >= VK_API_VERSION_1_2 && computeQueueFamily(devices[i], &tsBits) >= 0 &&
-                  supportsRequiredFeatures(devices[i], &missing);
+    bool usable = p.apiVersion >= VK_API_VERSION_1_2 && computeQueueFamily(devices[i], &tsBits, surface_) >= 0 &&
+                  supportsRequiredFeatures(devices[i], &missing) &&
+                  (!surface_ || hasDeviceExtension(devices[i], VK_KHR_SWAPCHAIN_EXTENSION_NAME));
     bool matches = options.device.empty() ||
                    options.device == std::to_string(i) ||
                    lower(p.deviceName).find(lower(options.device)) != std::string::npos;
@@ -150,11 +158,12 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   }
   if (chosen < 0) {
     if (!options.device.empty()) throw Error("no usable Vulkan device matches --device " + options.device + " (devices: " + names + ")");
-    throw Error("no Vulkan device supports what mixtrace needs (Vulkan 1.2, compute, scalar block layout, 64-bit and float atomics; devices: " + names + ")");
+    throw Error("no Vulkan device supports what mixtrace needs (Vulkan 1.2, compute, scalar block layout, 64-bit atomics" +
+                std::string(surface_ ? ", presenting to the window" : "") + "; devices: " + names + ")");
   }
   physical_ = devices[size_t(chosen)];
   vkGetPhysicalDeviceProperties(physical_, &properties_);
-  queueFamily_ = uint32_t(computeQueueFamily(physical_, &timestampValidBits_));
+  queueFamily_ = uint32_t(computeQueueFamily(physical_, &timestampValidBits_, surface_));
   VkPhysicalDeviceMemoryProperties mem;
   vkGetPhysicalDeviceMemoryProperties(physical_, &mem);
   for (uint32_t i = 0; i < mem.memoryHeapCount; ++i)
@@ -178,9 +187,11 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   dci.pNext = &f;
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
-  const char* deviceExtensions[] = {VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME};
-  dci.enabledExtensionCount = floatAtomics_ ? 1 : 0;
-  dci.ppEnabledExtensionNames = deviceExtensions;
+  std::vector<const char*> deviceExtensions;
+  if (floatAtomics_) deviceExtensions.push_back(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
+  if (surface_) deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  dci.enabledExtensionCount = uint32_t(deviceExtensions.size());
+  dci.ppEnabledExtensionNames = deviceExtensions.data();
   vkCheck(vkCreateDevice(physical_, &dci, nullptr, &device_), "vkCreateDevice");
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
 
@@ -196,6 +207,7 @@ VulkanContext::~VulkanContext() {
     vkDestroyCommandPool(device_, commandPool_, nullptr);
     vkDestroyDevice(device_, nullptr);
   }
+  if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
   if (messenger_) {
     auto destroy = (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT");
     if (destroy) destroy(instance_, messenger_, nullptr);

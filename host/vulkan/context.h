@@ -1,8 +1,11 @@
 #pragma once
 // The Vulkan instance, the chosen physical device, one compute queue and the objects every
-// pass shares (command pool, descriptor pool). Headless: no surface, no swapchain.
+// pass shares (command pool, descriptor pool). Headless unless a window asks for a surface (the
+// viewer): then the queue must also present to it and VK_KHR_swapchain is enabled.
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -11,6 +14,10 @@ namespace mixtrace {
 struct ContextOptions {
   std::string device;       // index or case-insensitive name substring; empty = first suitable
   bool validation = false;  // enable VK_LAYER_KHRONOS_validation and count its errors
+  // Presentation: the instance extensions the window system needs, and what makes the window's
+  // surface once the instance exists (the context owns and destroys it).
+  std::vector<std::string> instanceExtensions;
+  std::function<VkSurfaceKHR(VkInstance)> makeSurface;
 };
 
 class VulkanContext {
@@ -22,6 +29,7 @@ class VulkanContext {
 
   VkDevice device() const { return device_; }
   VkPhysicalDevice physicalDevice() const { return physical_; }
+  VkSurfaceKHR surface() const { return surface_; }   // VK_NULL_HANDLE when headless
   VkQueue queue() const { return queue_; }
   uint32_t queueFamily() const { return queueFamily_; }
   VkCommandPool commandPool() const { return commandPool_; }
@@ -46,6 +54,7 @@ class VulkanContext {
  private:
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;

@@ -12,10 +12,9 @@
 layout(scalar, binding = BINDING_CELL_KEYS) buffer CellKeyBuf { uint64_t cellKeys[]; };
 layout(scalar, binding = BINDING_CLUSTERS) readonly buffer ClusterBuf { ClusterGpu clusters[]; };
 layout(scalar, binding = BINDING_CLUSTER_LIGHTS) readonly buffer ClusterLightBuf { ClusterLightGpu clusterLights[]; };
-layout(scalar, binding = BINDING_CV_CELL) buffer CvCellBuf { uint cvCell[]; };
-layout(scalar, binding = BINDING_CV_THROUGHPUT) buffer CvThroughputBuf { vec3 cvThroughput[]; };
-layout(scalar, binding = BINDING_CV_BSDF_COS) buffer CvBsdfCosBuf { vec3 cvBsdfCos[]; };
+layout(scalar, binding = BINDING_CV_STATE) buffer CvStateBuf { CvPathState cvState[]; };
 layout(scalar, binding = BINDING_PIXEL_ESTIMATE) buffer PixelEstimateBuf { vec3 pixelEstimate[]; };
+layout(scalar, binding = BINDING_FIRST_CELL) buffer FirstCellBuf { uint firstCell[]; };
 
 layout(constant_id = SPEC_CMS_SELECTION) const bool CMS_SELECTION = false;
 layout(constant_id = SPEC_CMS_CONTROL_VARIATE) const bool CMS_CONTROL_VARIATE = false;

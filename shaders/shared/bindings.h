@@ -36,10 +36,12 @@
 #define BINDING_CELL_KEYS 24      // uint64[tableSize]: hashed cell keys, 0 = empty (cms_cells.h)
 #define BINDING_CLUSTERS 25       // ClusterGpu[L]
 #define BINDING_CLUSTER_LIGHTS 26 // ClusterLightGpu[lights]: lights grouped by cluster, with CDFs
-#define BINDING_CV_CELL 27        // path state: the previous vertex's cell (kNoCell: none)
-#define BINDING_CV_THROUGHPUT 28  // path state: the previous vertex's throughput
-#define BINDING_CV_BSDF_COS 29    // path state: bsdf * cos of the previous vertex's BSDF sample
-#define BINDING_PIXEL_ESTIMATE 30  // vec3[pixels]: the pixel values CMS weights relate to (pixel_estimate.h)
+#define BINDING_CV_STATE 27       // CvPathState per path: the previous vertex's cell, throughput, bsdf * cos
+#define BINDING_PIXEL_ESTIMATE 28  // vec3[pixels]: the pixel values CMS weights relate to (pixel_estimate.h)
+#define BINDING_FIRST_CELL 29     // uint[pixels]: the cell of each pixel's first hit (CMS; viewer debug views)
+// The viewer (host/viewer): the display pass's output, packed 8-bit colour per window pixel
+#define BINDING_DISPLAY 30
+// Lavapipe allows 32 storage buffers per stage: keep BINDING_COUNT <= 32.
 #define BINDING_COUNT 31
 
 // Specialization constants: the scene's feature set (host/scene/features.h fills them).

@@ -11,11 +11,11 @@
 // compare-and-swap on the uint64 key table) and CELL_KEY_LOAD(slot).
 #ifndef MIXTRACE_SHARED_CMS_CELLS_H
 #define MIXTRACE_SHARED_CMS_CELLS_H
+#include "shared/cms_layouts.h"
 #include "shared/dialect.h"
 SHARED_BEGIN_WITH_BUFFERS
 
 const uint kCellProbes = 16u;
-const uint kNoCell = 0xffffffffu;
 const uint kCellCoordBits = 16u;     // up to 2^16 cells per axis (--cells allows 4096)
 const uint kCellMaterialBits = 13u;  // materials beyond 8192 share keys modulo 8192 (still unbiased)
 

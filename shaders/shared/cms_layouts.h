@@ -7,6 +7,9 @@
 #include "shared/dialect.h"
 SHARED_BEGIN
 
+// "No cell": a vertex the cell table refused, a pixel whose ray escaped, a sample in no cluster.
+const uint kNoCell = 0xffffffffu;
+
 // Capacity of the per-cell systems; --max-clusters chooses L <= kMaxClusters.
 const uint kMaxClusters = 32u;
 

@@ -104,6 +104,15 @@ struct EmitterGpu {
   float cdf;           // inclusive prefix sum inside its light
 };
 
+// CMS path state: what the next depth needs to settle a vertex's BSDF sample (its control-variate
+// and statistics terms depend on what the sample hits).
+struct CvPathState {
+  vec3 throughput;   // the vertex's path throughput
+  uint cell;         // the vertex's cell (kNoCell: none)
+  vec3 bsdfCos;      // bsdf * cos of the BSDF sample
+  float pad;
+};
+
 // Result of an extension-ray intersection. triangle == kNoHit for a miss.
 const uint kNoHit = 0xffffffffu;
 struct HitRecord {

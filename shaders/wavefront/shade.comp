@@ -38,7 +38,7 @@ void main() {
   // CMS: the previous vertex's BSDF sample, now that its hit is known.
   float emissionWeight = 1.0;
   if (CMS_SELECTION && prevPdfB > 0.0) {
-    uint prevCell = cvCell[path];
+    uint prevCell = cvState[path].cell;
     uint j = kNoCell;
     float pj = 0.0;
     // A light point that emits nothing towards the vertex (a one-sided emitter's back) counts as
@@ -52,14 +52,16 @@ void main() {
     if (CMS_CONTROL_VARIATE && cellSolutionValid(prevCell, L)) {
       vec3 g = cellAlphaB(prevCell, L) * prevPdfB;
       if (j != kNoCell) g += cellAlpha(prevCell, L, j) * pj;
-      radiance[path] -= cvThroughput[path] * g / peff;
+      radiance[path] -= cvState[path].throughput * g / peff;
     }
     if (prevCell != kNoCell && passGathersStatistics()) {
-      float w = sampleWeight(cvThroughput[path], path, prevCell);
+      float w = sampleWeight(cvState[path].throughput, path, prevCell);
       if (w > 0.0) addSampleToA(prevCell, j, pj, prevPdfB, peff, w);
-      if (w > 0.0 && j != kNoCell) addSampleToB(prevCell, j, le * cvBsdfCos[path], pj, prevPdfB, peff, w);
+      if (w > 0.0 && j != kNoCell) addSampleToB(prevCell, j, le * cvState[path].bsdfCos, pj, prevPdfB, peff, w);
     }
   }
+  // The viewer's cell views show the cell of each pixel's first hit (none where the ray escapes).
+  if (CMS_SELECTION && pc.depth == 1u && hit.triangle == kNoHit) firstCell[pc.pixelOffset + path] = kNoCell;
   if (hit.triangle == kNoHit) return;   // no environment light: the path ends
   if (isBlack(beta)) return;            // continued only to settle the terms above
 
@@ -96,6 +98,7 @@ void main() {
       if (gatheringStatistics(cell)) atomicAdd(cellSamples[cell], 1u);
     }
     else atomicAdd(queues.verticesWithoutCell, 1u);
+    if (pc.depth == 1u) firstCell[pc.pixelOffset + path] = cell;
     cv = CMS_CONTROL_VARIATE && cellSolutionValid(cell, L);
     if (cv) radiance[path] += beta * cellAlphaSum(cell, L);
   }
@@ -194,9 +197,12 @@ void main() {
   rayOrigin[path] = origin;
   rayDirection[path] = wiWorld;
   if (CMS_SELECTION) {
-    cvCell[path] = cell;
-    cvThroughput[path] = beta;
-    cvBsdfCos[path] = bsdfCos;
+    CvPathState state;
+    state.throughput = beta;
+    state.cell = cell;
+    state.bsdfCos = bsdfCos;
+    state.pad = 0.0;
+    cvState[path] = state;
   }
   uint queueOut = 1u - pc.queueIn;
   uint slot = atomicAdd(queues.rayCount[queueOut], 1u);

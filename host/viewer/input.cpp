@@ -1,0 +1,75 @@
+#include "viewer/input.h"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "util/error.h"
+
+namespace mixtrace {
+
+const std::vector<std::string>& knownKeyNames() {
+  static const std::vector<std::string> names = {
+      "1", "2", "3", "4", "5", "shift+1", "shift+2", "shift+3", "shift+4", "shift+5", "v", "g", "f1", "f2",
+      "f3", "f4", "f5", "f6", "p", "r", "w", "a", "s", "d", "q", "e", "escape"};
+  return names;
+}
+
+std::deque<InputEvent> parseInputScript(const std::string& text, const std::string& fileName) {
+  std::deque<InputEvent> events;
+  std::istringstream lines(text);
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream words(line);
+    std::string verb;
+    if (!(words >> verb)) continue;
+    const std::string where = fileName + ":" + std::to_string(number) + ": ";
+    InputEvent e;
+    auto number2 = [&](float& a, float& b) {
+      if (!(words >> a >> b)) throw Error(where + "'" + verb + "' needs two numbers");
+    };
+    if (verb == "frames") {
+      e.kind = InputEvent::Kind::Frames;
+      if (!(words >> e.x) || e.x < 1) throw Error(where + "'frames' needs a count >= 1");
+    } else if (verb == "key") {
+      e.kind = InputEvent::Kind::Key;
+      const auto& keys = knownKeyNames();
+      if (!(words >> e.name) || std::find(keys.begin(), keys.end(), e.name) == keys.end())
+        throw Error(where + "unknown key '" + e.name + "'");
+    } else if (verb == "drag") {
+      e.kind = InputEvent::Kind::Drag;
+      if (!(words >> e.name) || (e.name != "left" && e.name != "right"))
+        throw Error(where + "'drag' needs a button, left or right");
+      number2(e.x, e.y);
+    } else if (verb == "scroll") {
+      e.kind = InputEvent::Kind::Scroll;
+      if (!(words >> e.y)) throw Error(where + "'scroll' needs a number");
+    } else if (verb == "resize") {
+      e.kind = InputEvent::Kind::Resize;
+      number2(e.x, e.y);
+      if (e.x < 1 || e.y < 1 || e.x > 16384 || e.y > 16384) throw Error(where + "'resize' needs a size in 1..16384");
+    } else if (verb == "screenshot") {
+      e.kind = InputEvent::Kind::Screenshot;
+      if (!(words >> e.name)) throw Error(where + "'screenshot' needs a file name");
+    } else if (verb == "quit") {
+      e.kind = InputEvent::Kind::Quit;
+    } else {
+      throw Error(where + "unknown command '" + verb + "' (frames, key, drag, scroll, resize, screenshot, quit)");
+    }
+    std::string extra;
+    if (words >> extra) throw Error(where + "unexpected '" + extra + "'");
+    events.push_back(e);
+  }
+  return events;
+}
+
+std::deque<InputEvent> loadInputScript(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error("cannot read the script '" + path + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parseInputScript(text.str(), path);
+}
+
+}  // namespace mixtrace

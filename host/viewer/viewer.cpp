@@ -1,0 +1,358 @@
+#include "viewer/viewer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include "app/method_setup.h"
+#include "app/render_command.h"
+#include "output/png_preview.h"
+#include "output/render_output.h"
+#include "render/wavefront_renderer.h"
+#include "scene/gltf_loader.h"
+#include "shared/display.h"
+#include "util/error.h"
+#include "util/log.h"
+#include "viewer/camera_controller.h"
+#include "viewer/input.h"
+#include "viewer/swapchain.h"
+#include "viewer/window.h"
+#include "vulkan/buffer.h"
+#include "vulkan/check.h"
+#include "vulkan/context.h"
+#include "vulkan/pipeline.h"
+
+namespace mixtrace {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+const std::vector<std::string> kMethodKeys = {"pt-uniform", "pt-power", "learned", "cv", "cms"};   // keys 1-5
+const char* const kViewNames[shared::kViewCount] = {"image", "variance", "cells", "alpha sum", "likely light",
+                                                    "cell samples"};
+constexpr double kFrameBudgetSeconds = 1.0 / 15.0;   // rendering per frame, so input stays responsive
+constexpr float kScriptFlySeconds = 0.1f;            // one scripted W/A/S/D/Q/E press
+
+// One method's renderer and the display pass over its state.
+struct MethodView {
+  MethodSetup setup;
+  std::unique_ptr<WavefrontRenderer> renderer;
+  std::unique_ptr<ComputePipeline> display;
+  unsigned cameraVersion = ~0u;
+  double seconds = 0.0;           // rendering time since the last restart
+  uint32_t samplesPerFrame = 1;   // adapted to kFrameBudgetSeconds
+};
+
+class Viewer {
+ public:
+  Viewer(const RenderOptions& o, const std::string& scriptPath);
+  ~Viewer();
+  int run();
+
+ private:
+  MethodView& view(const std::string& method);
+  void handle(const InputEvent& e);
+  void render();
+  void present();
+  void recreateDisplay();
+  void screenshot(const std::string& path) const;
+  void save();
+  std::string title() const;
+  std::vector<MethodView*> visible();
+
+  RenderOptions options_;
+  Scene scene_;
+  std::string sceneName_;
+  Window window_;
+  VulkanContext ctx_;
+  std::unique_ptr<Swapchain> swapchain_;
+  std::unique_ptr<Buffer> display_;   // packed 8-bit pixels of the window
+  std::map<std::string, std::unique_ptr<MethodView>> views_;
+  std::unique_ptr<CameraController> camera_;
+  std::deque<InputEvent> script_, events_;
+  bool scripted_ = false, quit_ = false, split_ = false;
+  std::string method_, other_ = "pt-power";
+  uint32_t viewMode_ = shared::kViewImage;
+  int framesLeft_ = 0;
+  uint64_t frames_ = 0;
+};
+
+std::string formatRate(double perSecond) {
+  char b[32];
+  std::snprintf(b, sizeof(b), "%.2f M", perSecond * 1e-6);
+  return b;
+}
+
+// The window starts at a whole multiple of the film's size, at least about 640 pixels wide.
+int windowScale(const RenderOptions& o) { return std::max(1, 640 / std::max(o.width, 1)); }
+
+Viewer::Viewer(const RenderOptions& o, const std::string& scriptPath)
+    : options_(o),
+      scene_(loadGltf(o.scene.empty() ? defaultScenePath() : o.scene)),
+      window_(o.width * windowScale(o), o.height * windowScale(o), "mixtrace"),
+      ctx_(ContextOptions{o.device, o.validation, window_.vulkanInstanceExtensions(),
+                          [this](VkInstance instance) { return window_.createSurface(instance); }}),
+      method_(o.method) {
+  sceneName_ = scene_.name;
+  if (!scriptPath.empty()) {
+    script_ = loadInputScript(scriptPath);
+    scripted_ = true;
+  }
+  if (other_ == method_) other_ = "cms";
+  int w = 0, h = 0;
+  window_.framebufferSize(w, h);
+  swapchain_ = std::make_unique<Swapchain>(ctx_, uint32_t(std::max(w, 1)), uint32_t(std::max(h, 1)));
+  MethodView& first = view(method_);
+  const PreparedScene& p = first.setup.prepared;
+  camera_ = std::make_unique<CameraController>(makeCamera(p.scene, uint32_t(o.width), uint32_t(o.height)),
+                                               p.scene.bounds.center(), glm::length(p.scene.bounds.extent()));
+  recreateDisplay();
+  info("view " + sceneName_ + " on " + ctx_.deviceName() +
+       ": keys 1-5 method, shift+1-5 and V split view, G or F1-F6 debug views, mouse orbit/pan/zoom, WASDQE fly, "
+       "P save, R reset camera, Esc quit");
+}
+
+Viewer::~Viewer() { vkDeviceWaitIdle(ctx_.device()); }
+
+MethodView& Viewer::view(const std::string& method) {
+  auto found = views_.find(method);
+  if (found != views_.end()) return *found->second;
+  auto v = std::make_unique<MethodView>();
+  v->setup = setUpMethod(scene_, options_, method);
+  v->renderer = std::make_unique<WavefrontRenderer>(ctx_, v->setup.prepared, v->setup.settings, v->setup.clusters());
+  v->display = std::make_unique<ComputePipeline>(ctx_, "display", v->renderer->descriptors().pipelineLayout(),
+                                                 v->renderer->specialization());
+  if (display_) v->renderer->bindDisplay(*display_);
+  return *views_.emplace(method, std::move(v)).first->second;
+}
+
+std::vector<MethodView*> Viewer::visible() {
+  std::vector<MethodView*> v{&view(method_)};
+  if (split_) v.push_back(&view(other_));
+  return v;
+}
+
+void Viewer::recreateDisplay() {
+  vkCheck(vkDeviceWaitIdle(ctx_.device()), "vkDeviceWaitIdle");
+  const VkExtent2D e = swapchain_->extent();
+  display_ = std::make_unique<Buffer>(ctx_, VkDeviceSize(e.width) * e.height * sizeof(uint32_t), "display", true);
+  for (auto& [method, v] : views_) v->renderer->bindDisplay(*display_);
+}
+
+void Viewer::handle(const InputEvent& e) {
+  using Kind = InputEvent::Kind;
+  const bool wasSplit = split_;
+  switch (e.kind) {
+    case Kind::Frames: framesLeft_ = int(e.x); break;
+    case Kind::Quit: quit_ = true; break;
+    case Kind::Screenshot: screenshot(e.name); break;
+    case Kind::Scroll: camera_->zoom(e.y); break;
+    case Kind::Resize: window_.resize(int(e.x), int(e.y)); break;
+    case Kind::Drag:
+      if (e.name == "left") camera_->orbit(e.x, e.y);
+      else camera_->pan(e.x, e.y);
+      break;
+    case Kind::Key: {
+      const std::string& k = e.name;
+      if (k.size() == 1 && k[0] >= '1' && k[0] <= '5') {
+        method_ = kMethodKeys[size_t(k[0] - '1')];
+        if (other_ == method_) other_ = method_ == "pt-power" ? "cms" : "pt-power";
+      } else if (k.rfind("shift+", 0) == 0) {
+        const std::string m = kMethodKeys[size_t(k.back() - '1')];
+        if (m != method_) {
+          other_ = m;
+          split_ = true;
+        }
+      } else if (k == "v") {
+        split_ = !split_;
+      } else if (k == "g") {
+        viewMode_ = (viewMode_ + 1) % shared::kViewCount;
+      } else if (k[0] == 'f' && k.size() == 2) {
+        viewMode_ = uint32_t(k[1] - '1');
+      } else if (k == "p") {
+        save();
+      } else if (k == "r") {
+        camera_->reset();
+      } else if (k == "escape") {
+        quit_ = true;
+      } else {   // a scripted fly step
+        const glm::vec3 d = k == "w" ? glm::vec3(0, 0, 1) : k == "s" ? glm::vec3(0, 0, -1) : k == "d" ? glm::vec3(1, 0, 0)
+                          : k == "a" ? glm::vec3(-1, 0, 0) : k == "e" ? glm::vec3(0, 1, 0) : glm::vec3(0, -1, 0);
+        camera_->fly(d, kScriptFlySeconds);
+      }
+      break;
+    }
+  }
+  // A split view compares the two methods at equal time from the moment it opens.
+  if (split_ && !wasSplit)
+    for (MethodView* v : visible()) v->cameraVersion = ~0u;
+}
+
+void Viewer::render() {
+  std::vector<MethodView*> shown = visible();
+  for (MethodView* v : shown)
+    if (v->cameraVersion != camera_->version()) {
+      v->renderer->restart(camera_->camera());
+      v->cameraVersion = camera_->version();
+      v->seconds = 0.0;
+    }
+  // Equal time: of the methods shown, the one that has had less rendering time goes next.
+  MethodView* next = shown[0];
+  for (MethodView* v : shown)
+    if (v->seconds < next->seconds) next = v;
+  if (options_.spp > 0 && next->renderer->samplesPerPixel() >= uint32_t(options_.spp)) return;
+  uint32_t n = next->samplesPerFrame;
+  if (options_.spp > 0) n = std::min(n, uint32_t(options_.spp) - next->renderer->samplesPerPixel());
+  const auto start = Clock::now();
+  next->renderer->renderSamples(n);
+  const double dt = secondsSince(start);
+  next->seconds += dt;
+  if (dt < 0.5 * kFrameBudgetSeconds) next->samplesPerFrame = std::min(next->samplesPerFrame * 2, 256u);
+  else if (dt > kFrameBudgetSeconds) next->samplesPerFrame = std::max(next->samplesPerFrame / 2, 1u);
+}
+
+void Viewer::present() {
+  const VkExtent2D e = swapchain_->extent();
+  std::vector<MethodView*> shown = visible();
+  const bool presented = swapchain_->present(*display_, [&](VkCommandBuffer cmd) {
+    for (size_t i = 0; i < shown.size(); ++i) {
+      MethodView& v = *shown[i];
+      shared::DisplayConstants dc{};
+      dc.windowWidth = e.width;
+      dc.windowHeight = e.height;
+      dc.filmWidth = uint32_t(options_.width);
+      dc.filmHeight = uint32_t(options_.height);
+      dc.xBegin = uint32_t(i * e.width / shown.size());
+      dc.xEnd = uint32_t((i + 1) * e.width / shown.size());
+      dc.view = viewMode_;
+      dc.clusterCount = v.renderer->clusterCount();
+      dc.exposure = 1.0f;
+      dc.spp = v.renderer->samplesPerPixel();
+      dc.divider = i > 0 ? 1u : 0u;
+      dc.redFirst = swapchain_->redFirst() ? 1u : 0u;
+      VkDescriptorSet set = v.renderer->descriptors().set();
+      VkPipelineLayout layout = v.renderer->descriptors().pipelineLayout();
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v.display->handle());
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+      vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(dc), &dc);
+      vkCmdDispatch(cmd, (dc.xEnd - dc.xBegin + 7) / 8, (e.height + 7) / 8, 1);
+    }
+  });
+  if (!presented) {
+    int w = 0, h = 0;
+    window_.framebufferSize(w, h);
+    swapchain_->recreate(uint32_t(std::max(w, 1)), uint32_t(std::max(h, 1)));
+    recreateDisplay();
+  }
+}
+
+void Viewer::screenshot(const std::string& path) const {
+  const VkExtent2D e = swapchain_->extent();
+  std::vector<uint32_t> packed(size_t(e.width) * e.height);
+  display_->download(packed.data(), packed.size() * sizeof(uint32_t));
+  std::vector<unsigned char> rgb(packed.size() * 3);
+  const bool redFirst = swapchain_->redFirst();
+  for (size_t i = 0; i < packed.size(); ++i) {
+    const unsigned char a = packed[i] & 255u, b = (packed[i] >> 8) & 255u, c = (packed[i] >> 16) & 255u;
+    rgb[3 * i + 0] = redFirst ? a : c;
+    rgb[3 * i + 1] = b;
+    rgb[3 * i + 2] = redFirst ? c : a;
+  }
+  writePng8(path, int(e.width), int(e.height), rgb);
+  info("screenshot " + path + " (" + title() + ")");
+}
+
+void Viewer::save() {
+  MethodView& v = view(method_);
+  Image variance;
+  Image image = v.renderer->readImage(&variance);
+  namespace fs = std::filesystem;
+  std::string path = options_.out;
+  if (path.empty()) {
+    const std::string stem = fs::path(sceneName_).stem().string() + "-" + method_;
+    path = stem + ".exr";
+    for (int i = 2; fs::exists(path); ++i) path = stem + "-" + std::to_string(i) + ".exr";
+  }
+  writeRenderOutput(path, image, &variance,
+                    RenderOutputInfo{method_, sceneName_, int(v.renderer->samplesPerPixel()), v.seconds}, true);
+  info("saved " + path + " and its PNG (" + std::to_string(v.renderer->samplesPerPixel()) + " spp)");
+}
+
+std::string Viewer::title() const {
+  auto describe = [&](const std::string& method) {
+    const MethodView& v = *views_.at(method);
+    const uint32_t spp = v.renderer->samplesPerPixel();
+    char b[160];
+    std::snprintf(b, sizeof(b), "%s: %u spp, %.1f s, %s samples/s", method.c_str(), spp, v.seconds,
+                  formatRate(v.seconds > 0 ? spp * double(options_.width) * options_.height / v.seconds : 0.0).c_str());
+    return std::string(b);
+  };
+  std::string t = "mixtrace - " + sceneName_ + " - " + describe(method_);
+  if (split_ && views_.count(other_)) t += " | " + describe(other_) + " (split, equal time)";
+  return t + " - view: " + kViewNames[viewMode_];
+}
+
+int Viewer::run() {
+  while (!quit_) {
+    // A script drives the viewer between its 'frames' lines; without one, the window does.
+    while (scripted_ && framesLeft_ == 0 && !quit_) {
+      if (script_.empty()) {
+        quit_ = true;   // a script that ends without 'quit' still ends
+        break;
+      }
+      InputEvent e = script_.front();
+      script_.pop_front();
+      handle(e);
+    }
+    if (quit_) break;
+    window_.poll(events_);
+    while (!events_.empty()) {
+      handle(events_.front());
+      events_.pop_front();
+    }
+    if (window_.closeRequested()) break;
+    const auto frameStart = Clock::now();
+    const glm::vec3 fly = window_.flyDirection();
+    render();
+    if (fly != glm::vec3(0.0f)) camera_->fly(fly, float(secondsSince(frameStart)));
+    int w = 0, h = 0;
+    window_.framebufferSize(w, h);
+    if (w == 0 || h == 0) continue;   // minimised
+    const VkExtent2D e = swapchain_->extent();
+    if (uint32_t(w) != e.width || uint32_t(h) != e.height) {
+      swapchain_->recreate(uint32_t(w), uint32_t(h));
+      recreateDisplay();
+    }
+    present();
+    window_.setTitle(title());
+    ++frames_;
+    if (framesLeft_ > 0) --framesLeft_;
+  }
+  vkCheck(vkDeviceWaitIdle(ctx_.device()), "vkDeviceWaitIdle");
+  info("view: " + std::to_string(frames_) + " frames; " + title());
+  if (options_.validation) {
+    const uint32_t errors = ctx_.validationErrors();
+    std::fprintf(stderr, "mixtrace: view: %u validation errors\n", errors);
+    return errors > 0 ? 1 : 0;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int runViewer(const RenderOptions& options, const std::string& scriptPath) {
+  setQuiet(options.quiet);
+  if (options.backend != "vulkan") throw Error("view renders with the Vulkan backend only (drop --backend cpu)");
+  if (options.timeSeconds > 0.0) throw Error("--time is not used by view (it renders until the window closes)");
+  if (!options.statsPath.empty()) throw Error("--stats is not used by view (press P to save the film)");
+  Viewer viewer(options, scriptPath);
+  return viewer.run();
+}
+
+}  // namespace mixtrace
