@@ -12,13 +12,8 @@ namespace mixtrace {
 Swapchain::Swapchain(VulkanContext& ctx, uint32_t width, uint32_t height) : ctx_(ctx) {
   VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
   vkCheck(vkCreateSemaphore(ctx.device(), &sci, nullptr, &acquired_), "vkCreateSemaphore");
-  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  vkCheck(vkCreateFence(ctx.device(), &fci, nullptr, &fence_), "vkCreateFence");
-  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  ai.commandPool = ctx.commandPool();
-  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  ai.commandBufferCount = 1;
-  vkCheck(vkAllocateCommandBuffers(ctx.device(), &ai, &cmd_), "vkAllocateCommandBuffers");
+  fence_ = ctx.createFence();
+  cmd_ = ctx.allocateCommandBuffer();
   create(width, height);
 }
 

@@ -217,13 +217,25 @@ VulkanContext::~VulkanContext() {
 
 uint32_t VulkanContext::validationErrors() const { return gValidationErrors.load(); }
 
-VkCommandBuffer VulkanContext::beginOneShot() {
+VkCommandBuffer VulkanContext::allocateCommandBuffer() {
   VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   ai.commandPool = commandPool_;
   ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   ai.commandBufferCount = 1;
   VkCommandBuffer cmd;
   vkCheck(vkAllocateCommandBuffers(device_, &ai, &cmd), "vkAllocateCommandBuffers");
+  return cmd;
+}
+
+VkFence VulkanContext::createFence() {
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence;
+  vkCheck(vkCreateFence(device_, &fci, nullptr, &fence), "vkCreateFence");
+  return fence;
+}
+
+VkCommandBuffer VulkanContext::beginOneShot() {
+  VkCommandBuffer cmd = allocateCommandBuffer();
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vkBeginCommandBuffer(cmd, &bi);
@@ -232,9 +244,7 @@ VkCommandBuffer VulkanContext::beginOneShot() {
 
 void VulkanContext::endOneShotAndWait(VkCommandBuffer cmd) {
   vkEndCommandBuffer(cmd);
-  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence;
-  vkCheck(vkCreateFence(device_, &fci, nullptr, &fence), "vkCreateFence");
+  VkFence fence = createFence();
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
   si.pCommandBuffers = &cmd;

@@ -49,6 +49,9 @@ class VulkanContext {
   // Records with `record`, submits, waits. For set-up copies and tests.
   template <class F> void submitAndWait(F&& record);
   VkCommandBuffer beginOneShot();
+  // A primary command buffer from the shared pool, and an unsignalled fence (the caller frees them).
+  VkCommandBuffer allocateCommandBuffer();
+  VkFence createFence();
   void endOneShotAndWait(VkCommandBuffer cmd);
 
  private:
