@@ -220,9 +220,6 @@ def markdown(results):
         for key, k in results["knobs"].items():
             lines += [f"#### `{k['flag']}` on {k['scene']}: {k['help']}", "", report.knob_table(k), "",
                       f"![{key}](knob-{key}.png)", ""]
-            if any("gain_vs_pt_uniform" in p for p in k["points"]):
-                lines += ["cms gain over pt-uniform at each depth: " +
-                          ", ".join(f"{p['value']}: {p['gain_vs_pt_uniform']:.2f}x" for p in k["points"]), ""]
     return "\n".join(lines)
 
 
@@ -257,7 +254,16 @@ def main():
     ap.add_argument("--cache", default=os.path.join(ROOT, "benchmarks", "cache"), help="reference cache folder")
     ap.add_argument("--scenes", help="comma-separated scene files under scenes/ (default: the suite's)")
     ap.add_argument("--no-knobs", action="store_true", help="skip the knob sweeps")
+    ap.add_argument("--report-only", action="store_true",
+                    help="rewrite OUT/report.md from OUT/results.json without rendering (after a change of format)")
     args = ap.parse_args()
+    if args.report_only:
+        out = args.out or os.path.join(ROOT, "benchmarks", "results")
+        with open(os.path.join(out, "results.json")) as f:
+            results = json.load(f)
+        with open(os.path.join(out, "report.md"), "w") as f:
+            f.write(markdown(results))
+        return 0
     cfg = dict(CONFIGS["quick" if args.quick else "full"])
     if args.scenes:
         cfg["scenes"] = args.scenes.split(",")
