@@ -18,20 +18,11 @@
 #include "util/error.h"
 #include "util/log.h"
 #include "util/progress.h"
+#include "util/timing.h"
 #include "vulkan/context.h"
 
 namespace mixtrace {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-
-std::string formatRate(double perSecond) {
-  char b[64];
-  std::snprintf(b, sizeof(b), "%.2f M", perSecond * 1e-6);
-  return b;
-}
 
 }  // namespace
 

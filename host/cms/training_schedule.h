@@ -15,7 +15,6 @@ class TrainingSchedule {
   // Samples per pixel the render plans; 0 = open-ended (solve at every boundary, always gather).
   // A time-limited render updates its estimate as it goes.
   void plan(uint32_t totalSamples) { planned_ = totalSamples; }
-  uint32_t planned() const { return planned_; }
   // --train-spp: no solve after this many samples (0 = no limit): the paper trains for a fixed
   // budget (16 spp) and then renders with what it learned.
   void limitTraining(uint32_t samples) { trainLimit_ = samples; }

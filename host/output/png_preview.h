@@ -12,10 +12,10 @@ namespace mixtrace {
 // is visible rather than written as garbage. Throws mixtrace::Error when the file cannot be written.
 void writePngPreview(const std::string& path, const Image& image, float exposure = 1.0f);
 
-// `exrPath` with its extension replaced by .png (appended when it has none).
 // 8-bit sRGB bytes as they are (the viewer's screenshots), 3 per pixel, top row first.
 void writePng8(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb);
 
+// `exrPath` with its extension replaced by .png (appended when it has none).
 std::string defaultPreviewPath(const std::string& exrPath);
 
 // The 8-bit value writePngPreview stores for one linear channel value (exposed for tests).

@@ -6,6 +6,7 @@
 
 #include "cms/cell_grid.h"
 #include "shared/bindings.h"
+#include "shared/film.h"
 #include "util/error.h"
 #include "vulkan/check.h"
 #include "vulkan/context.h"
@@ -107,15 +108,13 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   accumulate_ = std::make_unique<ComputePipeline>(ctx, "accumulate", layout, spec);
 
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    film_.fillZero(cmd);
     queueState_.fillZero(cmd);
     cellKeys_.fillZero(cmd);
     cellStats_.fillZero(cmd);
     cellSamples_.fillZero(cmd);
     cellSolution_.fillZero(cmd);   // no cell has a selection yet
     pixelEstimate_.fillZero(cmd);
-    vkCmdFillBuffer(cmd, firstCell_.handle(), 0, VK_WHOLE_SIZE, shared::kNoCell);
-    computeBarrier(cmd);
+    recordClearFilm(cmd);
     // Solving the empty statistics gives every cell the default selection and no control variate.
     if (solver_) {
       VkDescriptorSet set = set_.set();
@@ -152,7 +151,8 @@ void WavefrontRenderer::dispatchIndirect(VkCommandBuffer cmd, const ComputePipel
   timer_.mark(cmd, label ? label : p.name().c_str());
 }
 
-void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths) {
+void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths,
+                                     bool gathering) {
   shared::PassConstants pc{};
   pc.pathCount = paths;
   pc.pixelOffset = pixelOffset;
@@ -165,9 +165,7 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   pc.gridOrigin = gridOrigin_;
   pc.gridInvCellSize = gridInvCellSize_;
   pc.sceneScale = sceneScale_;
-  pc.gatherStatistics = solver_ && schedule_.gathers(sampleIndex) ? 1u : 0u;
-  // The passes that gather statistics are timed apart, so their cost shows (benchmarks/suite.py).
-  const bool gathering = pc.gatherStatistics != 0u;
+  pc.gatherStatistics = gathering ? 1u : 0u;
 
   dispatch(cmd, *generate_, pc, groupsFor(paths));
   for (uint32_t depth = 1; depth <= settings_.maxDepth; ++depth) {
@@ -230,9 +228,10 @@ void WavefrontRenderer::renderSamples(uint32_t count) {
     VkDescriptorSet set = set_.set();
     vkCmdBindDescriptorSets(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, set_.pipelineLayout(), 0, 1, &set, 0, nullptr);
     for (uint32_t s = 0; s < n; ++s) {
+      const bool gathering = solver_ && schedule_.gathers(spp_ + s);
       for (uint32_t offset = 0; offset < pixelCount_; offset += pathCount_)
-        recordSample(cmd_, spp_ + s, offset, std::min(pathCount_, pixelCount_ - offset));
-      if (solver_ && schedule_.gathers(spp_ + s)) ++gatheringSamples_;
+        recordSample(cmd_, spp_ + s, offset, std::min(pathCount_, pixelCount_ - offset), gathering);
+      gatheringSamples_ += gathering;
       // Training iterations of doubling length (cms.md §7; cms/training_schedule.h).
       if (solver_ && schedule_.solvesAfter(spp_ + s + 1)) recordSolve(cmd_, true);
     }
@@ -255,14 +254,16 @@ void WavefrontRenderer::restart(const shared::CameraGpu& camera) {
   c.width = settings_.width;
   c.height = settings_.height;
   scene_.camera.upload(&c, sizeof(c));
-  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-    film_.fillZero(cmd);
-    vkCmdFillBuffer(cmd, firstCell_.handle(), 0, VK_WHOLE_SIZE, shared::kNoCell);
-    computeBarrier(cmd);
-  });
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) { recordClearFilm(cmd); });
   // The training schedule starts over: the cells keep what they learned, and the next solves
   // refine it with statistics weighted by the new image's pixel estimate.
   spp_ = 0;
+}
+
+void WavefrontRenderer::recordClearFilm(VkCommandBuffer cmd) {
+  film_.fillZero(cmd);
+  vkCmdFillBuffer(cmd, firstCell_.handle(), 0, VK_WHOLE_SIZE, shared::kNoCell);   // no pixel has a hit yet
+  computeBarrier(cmd);
 }
 
 Image WavefrontRenderer::readImage(Image* variance) const {
@@ -274,12 +275,10 @@ Image WavefrontRenderer::readImage(Image* variance) const {
   mean.rgb.assign(size_t(pixelCount_) * 3, 0.0f);
   if (variance) *variance = mean;
   if (spp_ == 0) return mean;
-  // Variance of the mean = sample variance / n = M2 / (n (n - 1)).
-  const double n = spp_;
   for (size_t p = 0; p < pixelCount_; ++p)
     for (int c = 0; c < 3; ++c) {
       mean.rgb[3 * p + c] = film[2 * p][c];
-      if (variance && spp_ > 1) variance->rgb[3 * p + c] = float(std::max(0.0, double(film[2 * p + 1][c]) / (n * (n - 1.0))));
+      if (variance) variance->rgb[3 * p + c] = shared::varianceOfMean(film[2 * p + 1][c], float(spp_));
     }
   return mean;
 }

@@ -59,7 +59,11 @@ class WavefrontRenderer : public Renderer {
   const std::vector<uint32_t>& specialization() const { return spec_; }
 
  private:
-  void recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths);
+  // `gathering`: this sample pass adds to the CMS statistics (the training schedule); its shade
+  // and shadow passes are then timed apart, so the statistics' cost shows (benchmarks/suite.py).
+  void recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths, bool gathering);
+  // Clears the film and the first-hit cells (before the first sample, and on restart).
+  void recordClearFilm(VkCommandBuffer cmd);
   // CMS, between training iterations: solve every cell from its statistics so far, and refresh
   // the pixel estimate the next iteration's statistics are weighted by.
   void recordSolve(VkCommandBuffer cmd, bool timed);

@@ -15,6 +15,16 @@ const std::vector<std::string>& knownKeyNames() {
   return names;
 }
 
+glm::vec3 flyDirectionOf(const std::string& key) {
+  if (key == "w") return {0.0f, 0.0f, 1.0f};
+  if (key == "s") return {0.0f, 0.0f, -1.0f};
+  if (key == "d") return {1.0f, 0.0f, 0.0f};
+  if (key == "a") return {-1.0f, 0.0f, 0.0f};
+  if (key == "e") return {0.0f, 1.0f, 0.0f};
+  if (key == "q") return {0.0f, -1.0f, 0.0f};
+  return {0.0f, 0.0f, 0.0f};
+}
+
 std::deque<InputEvent> parseInputScript(const std::string& text, const std::string& fileName) {
   std::deque<InputEvent> events;
   std::istringstream lines(text);

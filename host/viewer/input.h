@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 namespace mixtrace {
 
 struct InputEvent {
@@ -32,5 +34,9 @@ std::deque<InputEvent> loadInputScript(const std::string& path);
 
 // The key names a script (and the window) may use.
 const std::vector<std::string>& knownKeyNames();
+
+// The fly keys' directions in camera space (x right, y up, z forward): w s forward/back, d a
+// right/left, e q up/down; zero for any other key. Held keys and scripted presses alike.
+glm::vec3 flyDirectionOf(const std::string& key);
 
 }  // namespace mixtrace

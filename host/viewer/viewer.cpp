@@ -18,6 +18,7 @@
 #include "shared/display.h"
 #include "util/error.h"
 #include "util/log.h"
+#include "util/timing.h"
 #include "viewer/camera_controller.h"
 #include "viewer/input.h"
 #include "viewer/swapchain.h"
@@ -29,9 +30,6 @@
 
 namespace mixtrace {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 const std::vector<std::string> kMethodKeys = {"pt-uniform", "pt-power", "learned", "cv", "cms"};   // keys 1-5
 const char* const kViewNames[shared::kViewCount] = {"image", "variance", "cells", "alpha sum", "likely light",
@@ -82,12 +80,6 @@ class Viewer {
   int framesLeft_ = 0;
   uint64_t frames_ = 0;
 };
-
-std::string formatRate(double perSecond) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%.2f M", perSecond * 1e-6);
-  return b;
-}
 
 // The window starts at a whole multiple of the film's size, at least about 640 pixels wide.
 int windowScale(const RenderOptions& o) { return std::max(1, 640 / std::max(o.width, 1)); }
@@ -182,9 +174,7 @@ void Viewer::handle(const InputEvent& e) {
       } else if (k == "escape") {
         quit_ = true;
       } else {   // a scripted fly step
-        const glm::vec3 d = k == "w" ? glm::vec3(0, 0, 1) : k == "s" ? glm::vec3(0, 0, -1) : k == "d" ? glm::vec3(1, 0, 0)
-                          : k == "a" ? glm::vec3(-1, 0, 0) : k == "e" ? glm::vec3(0, 1, 0) : glm::vec3(0, -1, 0);
-        camera_->fly(d, kScriptFlySeconds);
+        camera_->fly(flyDirectionOf(k), kScriptFlySeconds);
       }
       break;
     }

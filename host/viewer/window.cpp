@@ -3,6 +3,8 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
+#include <utility>
+
 #include "util/error.h"
 
 namespace mixtrace {
@@ -82,8 +84,12 @@ void Window::resize(int width, int height) { glfwSetWindowSize(window_, width, h
 void Window::setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
 
 glm::vec3 Window::flyDirection() const {
-  auto held = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS ? 1.0f : 0.0f; };
-  return {held(GLFW_KEY_D) - held(GLFW_KEY_A), held(GLFW_KEY_E) - held(GLFW_KEY_Q), held(GLFW_KEY_W) - held(GLFW_KEY_S)};
+  const std::pair<int, const char*> keys[] = {{GLFW_KEY_W, "w"}, {GLFW_KEY_A, "a"}, {GLFW_KEY_S, "s"},
+                                              {GLFW_KEY_D, "d"}, {GLFW_KEY_Q, "q"}, {GLFW_KEY_E, "e"}};
+  glm::vec3 direction(0.0f);
+  for (const auto& [key, name] : keys)
+    if (glfwGetKey(window_, key) == GLFW_PRESS) direction += flyDirectionOf(name);
+  return direction;
 }
 
 void Window::onKey(GLFWwindow* w, int key, int, int action, int mods) {

@@ -5,12 +5,11 @@
 // packed as 8-bit sRGB into the display buffer the host copies to the swapchain image.
 #include "shared/display.h"
 #define PUSH_CONSTANT_TYPE DisplayConstants
+#define SCENE_SCALE() 1.0   // the display offsets no rays (gpu/buffers.glsl)
 #include "gpu/buffers.glsl"
 #include "gpu/cms_buffers.glsl"
-// The display traces no rays: the ray-offset scale the light headers refer to is not needed.
-#undef SCENE_SCALE
-#define SCENE_SCALE() 1.0
 #include "shared/cms_sampling.h"
+#include "shared/film.h"
 
 layout(scalar, binding = BINDING_DISPLAY) buffer DisplayBuf { uint display[]; };
 
@@ -42,9 +41,8 @@ vec3 viewColour(uint pixel) {
   if (pc.view == kViewImage) return encode(mean);
   if (pc.view == kViewVariance) {
     // Relative standard deviation of the mean, log scale from 0.1 % to 100 %.
-    float n = float(pc.spp);
-    float variance = n > 1.0 ? luminance(film[2u * pixel + 1u]) / (n * (n - 1.0)) : 0.0;
-    float relative = sqrt(max(variance, 0.0)) / (luminance(mean) + 1e-3);
+    float variance = varianceOfMean(luminance(film[2u * pixel + 1u]), float(pc.spp));
+    float relative = sqrt(variance) / (luminance(mean) + 1e-3);
     return heatColour((log(max(relative, 1e-3)) / log(10.0) + 3.0) / 3.0);
   }
   return cellView(pixel);
