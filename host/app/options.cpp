@@ -161,6 +161,8 @@ const RenderOptionSpec kOptionSpecs[] = {
     {"--general-pipelines", nullptr, false,
      [](RenderOptions& o, const std::string&, const std::string&) { o.generalPipelines = true; }},
     {"--variance", nullptr, false, [](RenderOptions& o, const std::string&, const std::string&) { o.variance = true; }},
+    {"--asset-root", nullptr, true,
+     [](RenderOptions& o, const std::string&, const std::string& v) { o.assetRoot = v; }},
 };
 
 const CompareOptionSpec kCompareOptionSpecs[] = {
@@ -348,6 +350,11 @@ std::string helpText() {
           "\n"
           "Without SCENE, the default scene shipped with mixtrace is rendered.\n"
           "Options take their value as '--opt value' or '--opt=value'.\n"
+          "\n"
+          "Input:\n"
+          "  --asset-root DIR     trusted scenes: the buffers and images a scene names\n"
+          "                       may lie anywhere under DIR (default: only under the\n"
+          "                       scene's own folder)\n"
           "\n"
           "Output:\n"
           "  --out FILE.exr       image to write (default: <scene stem>.exr in the\n"

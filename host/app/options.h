@@ -40,6 +40,7 @@ struct RenderOptions {
   bool relativeWeighting = true; // --relative-weighting on|off: CMS statistics weighting (cms.md §5)
   int trainSpp = 0;              // --train-spp N: no CMS solve after N spp (0 = no limit)
   bool floatAtomics = true;      // --float-atomics on|off: CMS statistics with float atomics or CAS loops
+  std::string assetRoot;         // --asset-root DIR: external scene files may lie under DIR (default: scene's folder)
 };
 
 // `mixtrace compare`: a statistical test of whether two renders (written with --variance) estimate

@@ -44,7 +44,7 @@ int runRender(const RenderOptions& o) {
   const std::string outPath = o.out.empty() ? fs::path(scenePath).stem().string() + ".exr" : o.out;
 
   auto setupStart = Clock::now();
-  MethodSetup setup = setUpMethod(loadGltf(scenePath), o, o.method);
+  MethodSetup setup = setUpMethod(loadGltf(scenePath, GltfLoadOptions{o.assetRoot}), o, o.method);
   const PreparedScene& prepared = setup.prepared;
   const RenderSettings& settings = setup.settings;
   const CmsScene& cms = setup.cms;

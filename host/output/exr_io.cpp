@@ -10,8 +10,13 @@
 #include <ImfStringAttribute.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
 #include <exception>
 #include <set>
+
+#include <sys/stat.h>
 
 #include "util/error.h"
 
@@ -104,14 +109,49 @@ void writeExr(const std::string& path, const Image& image, const ExrMetadata& me
   }
 }
 
+namespace {
+
+// What readExr accepts before allocating: the header's data window is the file's claim, and a
+// few hundred bytes can claim gigabytes. The largest image render writes is 16384 x 16384
+// (--width/--height); and no EXR compression packs float pixels tighter than deflate's
+// 1032:1 (PXR24 with its 4:3 on top), so a window needing more than kMaxExrExpansion times the
+// file's size cannot be backed by it.
+constexpr int64_t kMaxExrSide = 16384;
+constexpr int64_t kMaxExrExpansion = 2048;
+
+// The file must be a regular file (a FIFO would block, a device would never end).
+int64_t regularFileSize(const std::string& path) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) throw Error("cannot read EXR '" + path + "': " + std::strerror(errno));
+  if (!S_ISREG(info.st_mode)) throw Error("cannot read EXR '" + path + "': not a regular file");
+  return int64_t(info.st_size);
+}
+
+void checkDataWindow(const std::string& path, const Imath::Box2i& window, int channelCount, int64_t fileSize) {
+  const int64_t width = int64_t(window.max.x) - window.min.x + 1;
+  const int64_t height = int64_t(window.max.y) - window.min.y + 1;
+  if (width <= 0 || height <= 0) throw Error("EXR '" + path + "' has an empty data window");
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (width > kMaxExrSide || height > kMaxExrSide)
+    throw Error("EXR '" + path + "' claims " + size + " pixels, more than " + std::to_string(kMaxExrSide) +
+                " on a side");
+  const int64_t bytes = width * height * channelCount * int64_t(sizeof(float));
+  if (bytes / kMaxExrExpansion > fileSize)
+    throw Error("EXR '" + path + "' claims " + size + " pixels, more than its " + std::to_string(fileSize) +
+                " bytes can hold");
+}
+
+}  // namespace
+
 Image readExr(const std::string& path, ExrMetadata* meta, Image* variance) {
+  const int64_t fileSize = regularFileSize(path);
   try {
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
     const Imath::Box2i dataWindow = header.dataWindow();
+    checkDataWindow(path, dataWindow, 3, fileSize);
     const int width = dataWindow.max.x - dataWindow.min.x + 1;
     const int height = dataWindow.max.y - dataWindow.min.y + 1;
-    if (width <= 0 || height <= 0) throw Error("EXR '" + path + "' has an empty data window");
 
     const Imf::ChannelList& channels = header.channels();
     for (const char* name : kColorChannels)

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "scene/gltf_internal.h"
+#include "scene/gltf_limits.h"
 
 namespace mixtrace {
 namespace gltf {
@@ -76,7 +77,13 @@ AccessorReader::AccessorReader(const LoadContext& ctx, int accessorIndex, const 
     ctx.fail(name + " has an invalid component type " + std::to_string(componentType_));
   }
   const size_t elementSize = size_t(componentSize_) * size_t(components);
-  if (accessor.bufferView < 0) return;  // spec: no bufferView means every element is zero
+  if (accessor.bufferView < 0) {  // spec: no bufferView means every element is zero
+    if (count_ > kMaxDatalessAccessorElements) {
+      ctx.fail(name + " has no bufferView but claims " + std::to_string(count_) + " elements (at most " +
+               std::to_string(kMaxDatalessAccessorElements) + " zeros are accepted without data)");
+    }
+    return;
+  }
 
   size_t viewLength = 0;
   const unsigned char* view = bufferViewBytes(ctx, accessor.bufferView, viewLength, name);

@@ -1,4 +1,5 @@
 // One glTF mesh primitive instance -> world-space triangles.
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -36,6 +37,12 @@ WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitiv
   for (size_t i = 0; i < count; ++i) {
     // Transform in double so large translations do not cost precision before the final rounding.
     const glm::dvec4 p = world * glm::dvec4(glm::dvec3(positions.vec3(i)), 1.0);
+    if (!fitsInFloat(p.x) || !fitsInFloat(p.y) || !fitsInFloat(p.z)) {
+      // Refused rather than dropped as degenerate: a file whose geometry float cannot hold is not
+      // the scene it describes. (Non-finite values compare false and stay with the degenerate.)
+      const double worst = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+      checkedFloat(ctx, worst, "POSITION element " + std::to_string(i) + " of " + where + " after its node's transform");
+    }
     v.positions[i] = glm::vec3(p.x, p.y, p.z);
   }
 

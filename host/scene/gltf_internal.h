@@ -6,6 +6,7 @@
 // declarations of Model, TinyGLTF and tinygltf::LoadImageData.
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ namespace gltf {
 // What every stage needs: the parsed model and the file name for messages.
 struct LoadContext {
   std::string path;
+  std::string assetRoot;  // GltfLoadOptions::assetRoot
   tinygltf::Model model;
 
   // Throws mixtrace::Error("<path>: <message>").
@@ -28,13 +30,62 @@ struct LoadContext {
   void warning(const std::string& message) const;
 };
 
+// --- gltf_files.cpp: what the loader may read, and how.
+// Reads `path` if it is a regular file of at most `maxBytes` (never blocks on a FIFO); returns ""
+// on success, else why not ("is a FIFO, not a regular file"), for the caller to prefix a name to.
+std::string readRegularFile(const std::string& path, uint64_t maxBytes, std::vector<unsigned char>& out);
+
+// The file-system callbacks tinygltf uses for external buffers and images: URIs resolve against
+// the scene's folder only (no current-directory fallback, no absolute paths), must stay under
+// the asset root after resolving "..", and symbolic links (default: the scene's folder), and
+// must name regular files within kMaxFileBytes.
+class AssetFiles {
+ public:
+  // `assetRoot` empty: the scene's folder. Throws when the folder or the root cannot be resolved.
+  AssetFiles(const std::string& scenePath, const std::string& assetRoot);
+  AssetFiles(const AssetFiles&) = delete;
+  AssetFiles& operator=(const AssetFiles&) = delete;
+
+  // Callbacks pointing at this object, which must outlive their use.
+  tinygltf::FsCallbacks callbacks();
+  // The base directory to hand tinygltf (absolute, so its "./" fallback is recognisable).
+  const std::string& baseDir() const { return baseDir_; }
+  // The first URI refused (outside the root, not a regular file, too large), one line; "" if none.
+  const std::string& firstRefusal() const { return firstRefusal_; }
+  // tinygltf quotes the paths it built; the user wrote URIs relative to the scene.
+  std::string hidePaths(std::string text) const;
+
+ private:
+  bool resolve(const std::string& joined, std::filesystem::path& resolved);
+  bool exists(const std::string& joined);
+  bool read(std::vector<unsigned char>& out, std::string& err, const std::string& joined);
+  void refuse(const std::string& message);
+  bool rootIsSceneDir() const;
+
+  std::string baseDir_;  // canonical scene folder
+  std::string prefix_;   // baseDir_ with a trailing '/'
+  std::filesystem::path root_;
+  std::string firstRefusal_;
+};
+
 // --- gltf_parse.cpp: file -> tinygltf::Model, with the container checks tinygltf skips.
-// Throws for a missing, malformed or truncated file and for unsupported required extensions.
+// Throws for a missing, malformed, truncated, too large or too deeply nested file (or one that is
+// not a regular file), for refused external files and for unsupported required extensions.
 // Images are NOT decoded here: their encoded bytes are kept (Image::as_is) and decoded on demand
 // by decodeImage once the data they live in has been validated.
 void parseGltfFile(LoadContext& ctx);
+// Throws when [ and { nest deeper than kMaxJsonNesting in `json` (strings skipped).
+void checkJsonNesting(const LoadContext& ctx, const unsigned char* json, size_t size);
 // Joins the non-empty lines of a (tinygltf) message with "; " so errors stay one line.
 std::string condenseMessage(const std::string& text);
+
+// --- gltf_float_range.cpp: doubles from the file that must become floats.
+bool fitsInFloat(double value);
+// float(value); throws "<property> 1e+39 does not fit in a float" for finite values beyond
+// float's range (non-finite ones are left to the caller, which has its own fallbacks).
+float checkedFloat(const LoadContext& ctx, double value, const std::string& property);
+// checkedFloat on each element, named property[i].
+void checkFitsInFloat(const LoadContext& ctx, const std::vector<double>& values, const std::string& property);
 
 // --- gltf_accessors.cpp: bounds-checked reading of accessor data.
 int componentSizeOf(int componentType);   // 0 for an unknown type

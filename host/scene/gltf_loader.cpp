@@ -36,6 +36,7 @@ glm::dmat4 localTransform(const LoadContext& ctx, const tinygltf::Node& node, in
   const std::string where = "node " + std::to_string(nodeIndex);
   if (!node.matrix.empty()) {
     if (node.matrix.size() != 16 || !allFinite(node.matrix)) ctx.fail(where + " has a malformed matrix");
+    gltf::checkFitsInFloat(ctx, node.matrix, "nodes[" + std::to_string(nodeIndex) + "].matrix");
     glm::dmat4 m(1.0);
     for (int column = 0; column < 4; ++column) {
       for (int row = 0; row < 4; ++row) m[column][row] = node.matrix[size_t(column * 4 + row)];  // column-major
@@ -45,6 +46,7 @@ glm::dmat4 localTransform(const LoadContext& ctx, const tinygltf::Node& node, in
   glm::dmat4 m(1.0);
   if (!node.translation.empty()) {
     if (node.translation.size() != 3 || !allFinite(node.translation)) ctx.fail(where + " has a malformed translation");
+    gltf::checkFitsInFloat(ctx, node.translation, "nodes[" + std::to_string(nodeIndex) + "].translation");
     m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
   }
   if (!node.rotation.empty()) {
@@ -57,12 +59,19 @@ glm::dmat4 localTransform(const LoadContext& ctx, const tinygltf::Node& node, in
   }
   if (!node.scale.empty()) {
     if (node.scale.size() != 3 || !allFinite(node.scale)) ctx.fail(where + " has a malformed scale");
+    gltf::checkFitsInFloat(ctx, node.scale, "nodes[" + std::to_string(nodeIndex) + "].scale");
     m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
   }
   return m;
 }
 
 glm::dvec3 transformPoint(const glm::dmat4& m, const glm::dvec3& p) { return glm::dvec3(m * glm::dvec4(p, 1.0)); }
+
+// The world-space position of a camera or light, which the renderer holds in float: a chain of
+// transforms can carry it beyond float's range even when every node's own values fit.
+void checkWorldPosition(const LoadContext& ctx, const glm::dvec3& p, const std::string& what) {
+  for (int c = 0; c < 3; ++c) gltf::checkedFloat(ctx, p[c], what + " world position[" + std::to_string(c) + "]");
+}
 
 glm::dvec3 transformDirection(const glm::dmat4& m, const glm::dvec3& d) { return glm::dmat3(m) * d; }
 
@@ -179,6 +188,7 @@ class SceneBuilder {
     glm::dvec3 forward = transformDirection(world, {0.0, 0.0, -1.0});
     glm::dvec3 up = transformDirection(world, {0.0, 1.0, 0.0});
     const glm::dvec3 position = transformPoint(world, glm::dvec3(0.0));
+    checkWorldPosition(ctx_, position, "the camera of nodes[" + std::to_string(nodeIndex) + "]");
     bool usable = isFinite(position) && normalizeChecked(forward);
     if (usable) {
       up -= glm::dot(up, forward) * forward;  // re-orthogonalise under shear / non-uniform scale
@@ -226,9 +236,15 @@ class SceneBuilder {
       ctx_.warning(name + " has unknown type \"" + light.type + "\"; ignoring it");
       return;
     }
+    const std::string property = "KHR_lights_punctual lights[" + std::to_string(lightIndex) + "]";
+    gltf::checkedFloat(ctx_, light.intensity, property + ".intensity");
+    gltf::checkFitsInFloat(ctx_, light.color, property + ".color");
     glm::dvec3 color(1.0);
     if (light.color.size() == 3) color = glm::dvec3(light.color[0], light.color[1], light.color[2]);
     const glm::dvec3 intensity = color * light.intensity;
+    for (int c = 0; c < 3; ++c) {
+      gltf::checkedFloat(ctx_, intensity[c], property + ".color[" + std::to_string(c) + "] * intensity");
+    }
     if (!isFinite(intensity) || intensity.x < 0.0 || intensity.y < 0.0 || intensity.z < 0.0) {
       ctx_.warning(name + " has a negative or non-finite colour/intensity; ignoring it");
       return;
@@ -236,6 +252,7 @@ class SceneBuilder {
     out.intensity = glm::vec3(intensity);
     // `range` is deliberately ignored: the renderer uses the physical inverse-square falloff.
     const glm::dvec3 position = transformPoint(world, glm::dvec3(0.0));
+    checkWorldPosition(ctx_, position, "the light of nodes[" + std::to_string(nodeIndex) + "]");
     glm::dvec3 direction = transformDirection(world, {0.0, 0.0, -1.0});
     const bool hasDirection = normalizeChecked(direction);
     if (!isFinite(position) || (out.kind != shared::kLightPoint && !hasDirection)) {
@@ -290,9 +307,10 @@ class SceneBuilder {
 
 }  // namespace
 
-Scene loadGltf(const std::string& path) {
+Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
   LoadContext ctx;
   ctx.path = path;
+  ctx.assetRoot = options.assetRoot;
   gltf::parseGltfFile(ctx);
 
   Scene scene;

@@ -30,7 +30,7 @@ float emissiveStrength(const LoadContext& ctx, const tinygltf::Material& materia
     ctx.warning("material " + std::to_string(materialIndex) + " has an invalid emissiveStrength; using 1");
     return 1.0f;
   }
-  return float(value);
+  return checkedFloat(ctx, value, "materials[" + std::to_string(materialIndex) + "].emissiveStrength");
 }
 
 MaterialGpu defaultMaterial() {

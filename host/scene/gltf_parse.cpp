@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "scene/gltf_internal.h"
+#include "scene/gltf_limits.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -44,18 +45,10 @@ std::vector<std::string> nonEmptyLines(const std::string& text) {
   return lines;
 }
 
-std::vector<unsigned char> readWholeFile(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw Error(path + ": is a directory, not a glTF file");
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (!file) throw Error(path + ": cannot open file (" + std::strerror(errno) + ")");
+std::vector<unsigned char> readSceneFile(const std::string& path) {
   std::vector<unsigned char> bytes;
-  unsigned char chunk[1 << 16];
-  size_t got = 0;
-  while ((got = std::fread(chunk, 1, sizeof(chunk), file)) > 0) bytes.insert(bytes.end(), chunk, chunk + got);
-  const bool failed = std::ferror(file) != 0;
-  std::fclose(file);
-  if (failed) throw Error(path + ": error while reading the file");
+  const std::string problem = readRegularFile(path, kMaxFileBytes, bytes);
+  if (!problem.empty()) throw Error(path + ": " + problem);
   return bytes;
 }
 
@@ -149,24 +142,54 @@ std::string condenseMessage(const std::string& text) {
   return joined.empty() ? std::string("unknown error") : joined;
 }
 
+// The JSON parser and tinygltf's conversion of extras/extensions recurse once per level, so a
+// small file of a few thousand [ or { overflows the stack; this scan is flat.
+void checkJsonNesting(const LoadContext& ctx, const unsigned char* json, size_t size) {
+  int depth = 0;
+  bool inString = false;
+  for (size_t i = 0; i < size; ++i) {
+    const unsigned char c = json[i];
+    if (inString) {
+      if (c == '\\') {
+        ++i;  // whatever is escaped, it neither ends the string nor nests
+      } else if (c == '"') {
+        inString = false;
+      }
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonNesting) {
+        ctx.fail("JSON nests deeper than " + std::to_string(kMaxJsonNesting) + " levels (at byte " +
+                 std::to_string(i) + "); refused before parsing");
+      }
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
 void parseGltfFile(LoadContext& ctx) {
-  const std::vector<unsigned char> bytes = readWholeFile(ctx.path);
+  const std::vector<unsigned char> bytes = readSceneFile(ctx.path);
   if (bytes.empty()) ctx.fail("file is empty, not a glTF file");
-  if (bytes.size() > std::numeric_limits<unsigned int>::max()) ctx.fail("file is larger than 4 GiB");
-  const std::string baseDir = std::filesystem::path(ctx.path).parent_path().string();
+  static_assert(kMaxFileBytes <= std::numeric_limits<unsigned int>::max(), "tinygltf takes unsigned int sizes");
+  AssetFiles files(ctx.path, ctx.assetRoot);
 
   tinygltf::TinyGLTF parser;
   parser.SetImageLoader(&keepEncodedImage, nullptr);
+  parser.SetFsCallbacks(files.callbacks());
+  const std::string& baseDir = files.baseDir();
   std::string err;
   std::string warnings;
   bool ok = false;
   try {
     if (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0) {
       const uint32_t length = validateGlbContainer(ctx, bytes);
+      checkJsonNesting(ctx, bytes.data() + 20, readLittleEndian32(&bytes[12]));
       ok = parser.LoadBinaryFromMemory(&ctx.model, &err, &warnings, bytes.data(), length, baseDir);
     } else {
       size_t start = 0;
       if (!looksLikeJson(bytes, start)) ctx.fail("is not a glTF file (neither a JSON object nor binary glTF)");
+      checkJsonNesting(ctx, bytes.data() + start, bytes.size() - start);
       ok = parser.LoadASCIIFromString(&ctx.model, &err, &warnings, reinterpret_cast<const char*>(bytes.data() + start),
                                       static_cast<unsigned int>(bytes.size() - start), baseDir);
     }
@@ -176,6 +199,11 @@ void parseGltfFile(LoadContext& ctx) {
     // tinygltf throws from a few corners (e.g. std::vector::at on an empty BIN chunk).
     ctx.fail("malformed glTF: " + condenseMessage(e.what()));
   }
+  // A refused external file is fatal even where tinygltf only warns (images): the file asked for
+  // something it must not have, and its own message would name the path it built.
+  if (!files.firstRefusal().empty()) ctx.fail(files.firstRefusal());
+  warnings = files.hidePaths(warnings);
+  err = files.hidePaths(err);
   for (const std::string& line : nonEmptyLines(warnings)) ctx.warning(line);
   if (!ok) ctx.fail("malformed glTF: " + condenseMessage(err));
   for (const std::string& line : nonEmptyLines(err)) ctx.warning(line);  // reported but not fatal to tinygltf

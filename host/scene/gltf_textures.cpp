@@ -3,7 +3,10 @@
 #include <cmath>
 #include <climits>
 
+#include <stb/stb_image.h>  // declarations only: stb_image is compiled into libstb
+
 #include "scene/gltf_internal.h"
+#include "scene/gltf_limits.h"
 
 namespace mixtrace {
 namespace gltf {
@@ -76,6 +79,18 @@ void decodeImage(const LoadContext& ctx, int imageIndex, Texture& texture) {
   }
   if (size == 0) ctx.fail(name + " could not be read");
   if (size > size_t(INT_MAX)) ctx.fail(name + " is larger than 2 GiB");
+
+  // The header says how much decoding will allocate: a few hundred compressed bytes can claim
+  // gigabytes of texels, so the size is checked before anything is decoded.
+  int headerWidth = 0, headerHeight = 0, headerComponents = 0;
+  if (!stbi_info_from_memory(bytes, int(size), &headerWidth, &headerHeight, &headerComponents)) {
+    const char* reason = stbi_failure_reason();
+    ctx.fail(name + " could not be decoded: " + condenseMessage(reason ? reason : "unknown image format"));
+  }
+  if (headerWidth <= 0 || headerHeight <= 0 || uint64_t(headerWidth) * uint64_t(headerHeight) > kMaxImageTexels) {
+    ctx.fail(name + " is " + std::to_string(headerWidth) + "x" + std::to_string(headerHeight) + ", more than the " +
+             std::to_string(kMaxImageTexels) + "-texel limit");
+  }
 
   // tinygltf::LoadImageData is stb_image inside libtinygltf; without options it expands to RGBA
   // and keeps 16 bits per channel for 16-bit PNGs.

@@ -86,7 +86,7 @@ int windowScale(const RenderOptions& o) { return std::max(1, 640 / std::max(o.wi
 
 Viewer::Viewer(const RenderOptions& o, const std::string& scriptPath)
     : options_(o),
-      scene_(loadGltf(o.scene.empty() ? defaultScenePath() : o.scene)),
+      scene_(loadGltf(o.scene.empty() ? defaultScenePath() : o.scene, GltfLoadOptions{o.assetRoot})),
       window_(o.width * windowScale(o), o.height * windowScale(o), "mixtrace"),
       ctx_(ContextOptions{o.device, o.validation, window_.vulkanInstanceExtensions(),
                           [this](VkInstance instance) { return window_.createSurface(instance); }}),
