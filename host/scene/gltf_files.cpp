@@ -30,7 +30,7 @@ const char* fileKind(mode_t mode) {
   return "not a regular file";
 }
 
-std::string mebibytes(uint64_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
+std::string mebibytes(uint64_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }  // limits are whole MiB
 
 // Inside `root` (both canonical): no ".." at the front of the relative path.
 bool isUnder(const fs::path& path, const fs::path& root) {
@@ -52,7 +52,7 @@ std::string readRegularFile(const std::string& path, uint64_t maxBytes, std::vec
   } else if (!S_ISREG(info.st_mode)) {
     problem = std::string("is ") + fileKind(info.st_mode) + ", not a regular file";
   } else if (uint64_t(info.st_size) > maxBytes) {
-    problem = "is " + mebibytes(uint64_t(info.st_size)) + ", more than the " + mebibytes(maxBytes) + " limit";
+    problem = "is " + std::to_string(info.st_size) + " bytes, more than the " + mebibytes(maxBytes) + " limit";
   } else {
     // Read what fstat promised and no more: a file that grows meanwhile cannot extend the read.
     out.resize(size_t(info.st_size));
