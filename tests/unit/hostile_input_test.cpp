@@ -28,7 +28,7 @@ const fs::path kHostile = fs::path(MIXTRACE_SOURCE_DIR) / "tests/data/hostile";
 // 2 GiB of address space: far more than refusing needs, far less than the failures took (the
 // /dev/zero read and the 16384^2 PNG each went past 3 GB).
 const std::string kLimits = "ulimit -v 2097152;";
-constexpr int kTimeoutSeconds = 30;
+constexpr int kTimeoutSeconds = 20;
 
 // Render options that keep an accidental success cheap.
 const std::string kTiny = " --backend cpu --width 8 --height 8 --spp 1 -q --no-png";
