@@ -44,11 +44,11 @@ std::string readRegularFile(const std::string& path, uint64_t maxBytes, std::vec
   out.clear();
   // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer, forever.
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) return std::string("cannot open it (") + std::strerror(errno) + ")";
+  if (fd < 0) return std::string("cannot be opened (") + std::strerror(errno) + ")";
   struct stat info {};
   std::string problem;
   if (::fstat(fd, &info) != 0) {
-    problem = std::string("cannot inspect it (") + std::strerror(errno) + ")";
+    problem = std::string("cannot be inspected (") + std::strerror(errno) + ")";
   } else if (!S_ISREG(info.st_mode)) {
     problem = std::string("is ") + fileKind(info.st_mode) + ", not a regular file";
   } else if (uint64_t(info.st_size) > maxBytes) {
@@ -61,7 +61,7 @@ std::string readRegularFile(const std::string& path, uint64_t maxBytes, std::vec
       const ssize_t n = ::read(fd, out.data() + got, out.size() - got);
       if (n < 0 && errno == EINTR) continue;
       if (n < 0) {
-        problem = std::string("error while reading it (") + std::strerror(errno) + ")";
+        problem = std::string("could not be read (") + std::strerror(errno) + ")";
         break;
       }
       if (n == 0) break;  // shrank meanwhile

@@ -1,12 +1,10 @@
 // Reading a glTF file into a tinygltf::Model. tinygltf does the JSON work; this file adds what it
 // does not guarantee: one-line errors, container checks on .glb before tinygltf trusts its chunk
-// lengths, and deferring image decoding until the bytes have been validated.
+// lengths, a flat nesting scan before tinygltf's recursive parser sees the JSON, confinement of
+// external files (gltf_files.cpp), and deferring image decoding until the bytes have been validated.
 #include <algorithm>
-#include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <exception>
-#include <filesystem>
 #include <limits>
 #include <set>
 #include <sstream>

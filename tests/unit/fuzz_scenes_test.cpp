@@ -87,12 +87,17 @@ class Mutator {
     nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
     if (doc.is_discarded()) return mutateBytes(text);
     nlohmann::json flat = doc.flatten();
-    std::vector<std::string> keys;
+    std::vector<std::string> keys, sensitive;
     for (auto it = flat.begin(); it != flat.end(); ++it) {
-      if (!it.value().is_string() || it.value().get<std::string>().size() < 256) keys.push_back(it.key());  // not the data
+      if (it.value().is_string() && it.value().get<std::string>().size() >= 256) continue;  // buffer data
+      keys.push_back(it.key());
+      if (isSensitive(it.key())) sensitive.push_back(it.key());
     }
     if (keys.empty()) return mutateBytes(text);
-    const std::string& key = keys[pick(keys.size())];
+    // Half the time one of the values the loader converts or sizes by: a dictionary, as fuzzers
+    // use, so that 200 mutations reach them rather than mostly names and accessor bounds.
+    const std::vector<std::string>& from = (!sensitive.empty() && pick(2) == 0) ? sensitive : keys;
+    const std::string& key = from[pick(from.size())];
     switch (pick(5)) {
       case 0: flat.erase(key); break;
       case 1: flat[key] = "x"; break;
@@ -104,6 +109,16 @@ class Mutator {
     } catch (const std::exception&) {
       return mutateBytes(text);  // a key that no longer unflattens
     }
+  }
+
+  static bool isSensitive(const std::string& pointer) {
+    static const std::vector<std::string> kNames = {"translation", "scale",          "matrix",     "rotation",
+                                                    "intensity",   "emissiveStrength", "emissiveFactor", "color",
+                                                    "count",       "byteLength",     "byteOffset", "yfov"};
+    for (const std::string& name : kNames) {
+      if (pointer.find("/" + name) != std::string::npos) return true;
+    }
+    return false;
   }
 
   std::string mutateBytes(std::string bytes) {
