@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <string>
 #include <vector>
@@ -865,6 +866,74 @@ TEST_F(GltfLoaderTest, NodeCycleIsAnError) {
 }
 
 // --- Shipped scenes ----------------------------------------------------------------------------
+
+// The nesting limit (scene/gltf_limits.h: 128) counts [ and { outside strings only: the document's
+// own object is level 1, so extras nested 127 deep load and 128 deep are refused; brackets and
+// escaped quotes inside a string do not count.
+TEST_F(GltfLoaderTest, NestingLimitCountsBracketsOutsideStringsOnly) {
+  GltfBuilder b;
+  b.scene({b.node({{"mesh", b.triangleMesh()}})});
+  // The extras go in as raw text: nlohmann::json would refuse to build them this deep itself.
+  const auto withExtras = [&](const std::string& extras, const std::string& name) {
+    const std::string path = b.writeGltf(dir_, name);
+    std::ifstream in(path);
+    std::string body((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    in.close();
+    body.insert(1, "\"extras\": " + extras + ", ");
+    std::ofstream(path) << body;
+    return path;
+  };
+  std::string warnings;
+  EXPECT_NO_THROW(loadCapturing(withExtras(std::string(127, '[') + std::string(127, ']'), "ok.gltf"), warnings));
+  const std::string inString = "\"\\\"" + std::string(1000, '[') + "{\\\\\"";  // "\"[[[...{\\"
+  EXPECT_NO_THROW(loadCapturing(withExtras(inString, "string.gltf"), warnings));
+  const std::string message = loadError(withExtras(std::string(128, '[') + std::string(128, ']'), "deep.gltf"));
+  expectOneLine(message);
+  EXPECT_NE(message.find("nests deeper than 128 levels"), std::string::npos) << message;
+}
+
+// Float's range is the bound, not some smaller guess: 3e38 loads, 4e38 (and a light beyond it) does not.
+TEST_F(GltfLoaderTest, EmissiveStrengthUpToFloatMaxLoadsBeyondIsRefusedByName) {
+  for (double strength : {3e38, 4e38}) {
+    GltfBuilder b;
+    b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+    b.doc["materials"] = json::array({{{"emissiveFactor", {1, 1, 1}},
+                                       {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", strength}}}}}}});
+    b.scene({b.node({{"mesh", b.triangleMesh({{"material", 0}})}})});
+    const std::string path = b.writeGltf(dir_, "strength.gltf");
+    if (strength < 3.4e38) {
+      std::string warnings;
+      const Scene scene = loadCapturing(path, warnings);
+      EXPECT_FLOAT_EQ(scene.materials.at(0).emission.x, 3e38f);
+    } else {
+      const std::string message = loadError(path);
+      expectOneLine(message);
+      EXPECT_NE(message.find("materials[0].emissiveStrength 4e+38 does not fit in a float"), std::string::npos)
+          << message;
+    }
+  }
+}
+
+// An accessor without a bufferView is zeros; up to the limit that is valid (degenerate) data.
+TEST_F(GltfLoaderTest, AccessorWithoutBufferViewIsBoundedByTheDatalessLimit) {
+  for (size_t count : {size_t(3), size_t(1) << 21}) {
+    GltfBuilder b;
+    const int real = b.vec3s({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    b.doc["accessors"].push_back({{"componentType", kFloat}, {"count", count}, {"type", "VEC3"}});
+    const int zeros = int(b.doc["accessors"].size()) - 1;
+    b.scene({b.node({{"mesh", b.mesh(json::array({{{"attributes", {{"POSITION", real}}}},
+                                                   {{"attributes", {{"POSITION", zeros}}}}}))}})});
+    const std::string path = b.writeGltf(dir_, "zeros.gltf");
+    if (count == 3) {
+      std::string warnings;
+      EXPECT_EQ(loadCapturing(path, warnings).triangles.size(), 1u);  // the zero triangle is dropped
+    } else {
+      const std::string message = loadError(path);
+      expectOneLine(message);
+      EXPECT_NE(message.find("has no bufferView but claims 2097152 elements"), std::string::npos) << message;
+    }
+  }
+}
 
 TEST(GltfShippedScenes, EveryShippedSceneLoads) {
   const fs::path scenes = fs::path(MIXTRACE_SOURCE_DIR) / "scenes";
