@@ -128,6 +128,15 @@ TEST(HostileInput, AssetRootAdmitsFilesInASiblingFolder) {
   EXPECT_EQ(allowed.exitCode, 0) << allowed.stderrText;
 }
 
+// The check is on the resolved path: a link inside the folder does not lead out of it.
+TEST(HostileInput, SymbolicLinkOutOfTheFolderIsRefused) {
+  const fs::path outside = scratchDir("hostile-link-outside");
+  writeTriangleBin(outside / "triangle.bin");
+  const fs::path dir = copyToScratch("uri_fifo.gltf", "link");
+  fs::create_symlink(outside / "triangle.bin", dir / "fifo.bin");
+  expectRefused(renderScene(dir / "uri_fifo.gltf"), "URI 'fifo.bin' points outside the scene's folder");
+}
+
 TEST(HostileInput, FifoBufferIsRefusedWithoutBlocking) {
   const fs::path dir = copyToScratch("uri_fifo.gltf", "fifo-uri");
   ASSERT_EQ(::mkfifo((dir / "fifo.bin").c_str(), 0600), 0);
