@@ -41,6 +41,7 @@ done
 if [ ${#missing[@]} -gt 0 ]; then
   SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
   export DEBIAN_FRONTEND=noninteractive
+  apt_start=$SECONDS
   echo "setup: updating Debian's package lists (apt-get update)"
   $SUDO apt-get update -q | grep --line-buffered -E '^(Get|Fetched|Err|W:|E:)' || true
   # What apt will fetch, dependencies included: the number and the download size.
@@ -57,6 +58,7 @@ if [ ${#missing[@]} -gt 0 ]; then
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
       { echo "setup: error: apt-get did not install $p (see its messages above)" >&2; exit 1; }
   done
+  echo "setup: $count packages installed in $((SECONDS - apt_start)) s"
 fi
 
 # Some Vulkan loaders and layers want a runtime directory even when headless.
@@ -67,8 +69,10 @@ mkdir -p "$XDG_RUNTIME_DIR" && chmod 700 "$XDG_RUNTIME_DIR"
 require_tests=OFF; [ "$purpose" = tests ] && require_tests=ON
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DMIXTRACE_REQUIRE_TESTS=$require_tests >/dev/null
 if [ "$purpose" = tests ]; then
-  echo "setup: building mixtrace and every test program (about 10 minutes on 2 cores the first time)"
+  echo "setup: building mixtrace and every test program (the first time about 3-10 minutes on 2 cores)"
 else
-  echo "setup: building mixtrace (about 2 minutes on 2 cores the first time)"
+  echo "setup: building mixtrace (the first time about 1-3 minutes on 2 cores)"
 fi
+build_start=$SECONDS
 cmake --build build "${targets[@]}"
+echo "setup: build done in $((SECONDS - build_start)) s"
