@@ -7,9 +7,12 @@
 #   bash scripts/setup.sh benchmarks  the binary, plus numpy and matplotlib (scripts/benchmark.sh)
 #   bash scripts/setup.sh tests       everything the test suite needs; builds the binary and
 #                                     every test program (scripts/test.sh, .ci/run)
+#   bash scripts/setup.sh PURPOSE --plan   only print what it would install and build (for
+#                                     tests/scripts/setup_plan_test.sh); changes nothing
 set -euo pipefail
 cd "$(dirname "$0")/.."
 purpose=${1:-render}
+plan_only=false; [ "${2:-}" = --plan ] && plan_only=true
 
 # What building and running the binary needs (CMakeLists.txt's find_package calls, the headers
 # host/ includes, and lavapipe to render on without a GPU). g++ rather than build-essential:
@@ -33,6 +36,11 @@ case "$purpose" in
   tests)      packages=("${RENDER_PACKAGES[@]}" "${TEST_PACKAGES[@]}");      targets=() ;;
   *) echo "setup: error: unknown purpose '$purpose' (render, benchmarks or tests)" >&2; exit 2 ;;
 esac
+if $plan_only; then
+  echo "packages: ${packages[*]}"
+  echo "targets: ${targets[*]:-all}"
+  exit 0
+fi
 
 missing=()
 for p in "${packages[@]}"; do
