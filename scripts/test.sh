@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds in Release and runs the whole test suite (CTest) on lavapipe.
+# The README's second command (and .ci/run's): install everything the tests need (only what is
+# missing), build the binary and every test program in Release, run the whole suite (CTest) on
+# lavapipe. Arguments go to ctest, e.g. -R render_cli.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh tests
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp/xdg-runtime-$(id -u)}
 mkdir -p "$XDG_RUNTIME_DIR" && chmod 700 "$XDG_RUNTIME_DIR"
 cd build
