@@ -6,7 +6,9 @@
 //   mixtrace help | --help | -h        (also: mixtrace render --help)
 //   mixtrace --version
 // Parsing only: nothing here prints, touches files or resolves defaults that need the scene.
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,15 @@ enum class Command { Render, Compare, View, Help, Version };
 // Samples per pixel used when neither --spp nor --time is given. The help text quotes it, so the
 // renderer should use this constant rather than its own literal.
 constexpr int kDefaultSpp = 16;
+
+// A camera set on the command line, as pbrt's LookAt and Mitsuba's sensor do (--look-from,
+// --look-at, --up, --fov). Each value given replaces that part of the camera the scene would
+// otherwise use (the file's, or the default framing); app/scene_camera.h combines them.
+struct CameraOptions {
+  std::optional<std::array<double, 3>> lookFrom, lookAt, up;
+  std::optional<double> fovDegrees;   // vertical field of view, in (0, 180)
+  bool any() const { return lookFrom || lookAt || up || fovDegrees; }
+};
 
 struct RenderOptions {
   std::string scene;             // empty -> default scene (resolved by the caller)
@@ -40,6 +51,7 @@ struct RenderOptions {
   bool relativeWeighting = true; // --relative-weighting on|off: CMS statistics weighting (cms.md §5)
   int trainSpp = 0;              // --train-spp N: no CMS solve after N spp (0 = no limit)
   bool floatAtomics = true;      // --float-atomics on|off: CMS statistics with float atomics or CAS loops
+  CameraOptions camera;          // --look-from, --look-at, --up, --fov
 };
 
 // `mixtrace compare`: a statistical test of whether two renders (written with --variance) estimate
