@@ -77,8 +77,8 @@ glm::dvec3 applyCameraOptions(Scene& scene, const CameraOptions& c) {
   const std::string problem = frameProblem(from, at, up);
   if (!problem.empty()) {
     const std::string source = scene.camera.fromFile ? "the file's camera" : "the default camera";
-    throw Error("camera: " + problem + " (what --look-from, --look-at and --up leave out comes from " + source +
-                "; give them all)");
+    throw Error("camera: " + problem + " (what --look-from, --look-at and --up do not set comes from " + source +
+                ")");
   }
   Camera& out = scene.camera;
   out.position = glm::vec3(from);
