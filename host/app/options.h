@@ -31,7 +31,8 @@ struct CameraOptions {
 
 struct RenderOptions {
   std::string scene;             // empty -> default scene (resolved by the caller)
-  std::string out;               // empty -> "<scene stem>.exr" in the current directory
+  std::string out;               // empty -> "<scene stem>.exr" in the current directory; the
+                                 // extension picks the format (output/render_output.h)
   int spp = -1;                  // -1: not given
   double timeSeconds = -1.0;     // -1: not given; with spp too, stop at whichever comes first
   int width = 320, height = 240;
@@ -41,7 +42,7 @@ struct RenderOptions {
   uint32_t seed = 0;
   std::string statsPath;         // --stats FILE.json
   std::string device;            // --device INDEX|NAME-SUBSTRING; empty = first suitable device
-  bool png = true;               // --no-png disables the preview
+  bool png = true;               // --no-png disables the preview beside an EXR
   bool quiet = false;            // -q/--quiet
   bool validation = false;       // --validation: Vulkan validation layer
   bool generalPipelines = false; // --general-pipelines: no specialisation on scene features

@@ -116,6 +116,10 @@ int runRender(const RenderOptions& o) {
   }
   double renderSeconds = secondsSince(renderStart);
   progress.finish();
+  // Decided here: a signal during the writes below is only a request to stop early, and the
+  // render has already ended.
+  const std::string stoppedBy = stop.signalName();
+  const int stopExitCode = stop.exitCode();
 
   Image variance;
   Image image = renderer.readImage(o.variance ? &variance : nullptr);
@@ -133,7 +137,7 @@ int runRender(const RenderOptions& o) {
   stats.seed = o.seed;
   stats.spp = renderer.samplesPerPixel();
   stats.targetSpp = timed && o.spp <= 0 ? 0 : targetSpp;
-  stats.interruptedBy = stop.signalName();
+  stats.interruptedBy = stoppedBy;
   stats.renderSeconds = renderSeconds;
   stats.setupSeconds = setupSeconds;
   stats.bvhBuildSeconds = prepared.bvh.buildSeconds;
@@ -156,7 +160,7 @@ int runRender(const RenderOptions& o) {
          " vertices; they used no control variate (still unbiased); a smaller --cells fits");
   stats.validationErrors = ctx ? ctx->validationErrors() : 0;
   stats.passMs = renderer.passTimesMs();
-  if (stop.requested())
+  if (!stoppedBy.empty())
     warn("stopped by " + stats.interruptedBy + " after " + std::to_string(stats.spp) +
          (stats.targetSpp > 0 ? " of " + std::to_string(stats.targetSpp) : std::string()) +
          " spp; writing what has been rendered");
@@ -175,7 +179,7 @@ int runRender(const RenderOptions& o) {
     std::fprintf(stderr, "mixtrace: error: the Vulkan validation layer reported %u error(s)\n", stats.validationErrors);
     return 1;
   }
-  return stop.exitCode();
+  return stopExitCode;
 }
 
 }  // namespace mixtrace

@@ -197,3 +197,28 @@ TEST(AtomicFile, AFailedWriteLeavesTheOldFileAndNoTemporary) {
   EXPECT_EQ(bytesOf(target), "new content");
   EXPECT_THROW(writeFileAtomically((dir / "missing/x.txt").string(), std::string("x")), Error);
 }
+
+// compare's outputs (--json, --error-map) never overwrite the images compared, and a bad
+// directory is refused before the images are read; the error map is replaced by rename.
+TEST(OutputSafety, CompareOutputsAreCheckedToo) {
+  const fs::path dir = scratchDir("compare-out");
+  const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string();
+  ASSERT_EQ(runMixtrace(kQuick + "-q --no-png --variance --out " + a).exitCode, 0);
+  ASSERT_EQ(runMixtrace(kQuick + "-q --no-png --variance --seed 1 --out " + b).exitCode, 0);
+  const std::string before = bytesOf(a);
+  for (const std::string& args : {"compare " + a + " " + b + " --json " + a,
+                                  "compare " + a + " " + b + " --error-only --error-map " + b,
+                                  "compare " + a + " " + b + " --json " + (dir / "missing/r.json").string()}) {
+    const RunResult r = runMixtrace(args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.stderrText;
+    ASSERT_EQ(r.stderrLines().size(), 1u) << args << "\n" << r.stderrText;
+  }
+  EXPECT_EQ(bytesOf(a), before);
+  EXPECT_TRUE(startsWith(bytesOf(b), kExrMagic));
+  const std::string map = (dir / "e.pfm").string();
+  ASSERT_EQ(runMixtrace("compare " + a + " " + b + " --error-only --error-map " + map).exitCode, 0);
+  const ino_t first = inodeOf(map);
+  ASSERT_EQ(runMixtrace("compare " + a + " " + b + " --error-only --error-map " + map).exitCode, 0);
+  EXPECT_NE(inodeOf(map), first);
+  EXPECT_TRUE(startsWith(bytesOf(map), "Pf\n"));
+}
