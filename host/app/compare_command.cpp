@@ -4,12 +4,26 @@
 
 #include "compare/image_compare.h"
 #include "output/exr_io.h"
+#include "output/output_paths.h"
 #include "output/pfm_io.h"
 #include "util/error.h"
 
 namespace mixtrace {
+namespace {
+
+// Before reading the images: the outputs must be writable and overwrite neither image.
+void checkCompareOutputs(const CompareOptions& o) {
+  std::vector<NamedFile> outputs;
+  if (!o.reportJson.empty()) outputs.push_back({"--json", o.reportJson});
+  if (!o.errorMap.empty()) outputs.push_back({"--error-map", o.errorMap});
+  checkNoSharedFiles(outputs, {{"image A", o.a}, {"image B", o.b}});
+  for (const NamedFile& output : outputs) checkWritableOutput(output);
+}
+
+}  // namespace
 
 int runCompare(const CompareOptions& options) {
+  checkCompareOutputs(options);
   if (options.errorOnly) {
     std::printf("relMSE %.6g\n", relativeMseOfExrFiles(options.a, options.b));
     if (!options.errorMap.empty()) {

@@ -2,11 +2,13 @@
 
 #include <cctype>
 #include <cerrno>
+#include <cfloat>
 #include <cmath>
 #include <cstdlib>
 #include <map>
 #include <sstream>
 
+#include "app/scene_camera.h"
 #include "util/error.h"
 
 namespace mixtrace {
@@ -67,6 +69,38 @@ double parsePositiveSeconds(const std::string& option, const std::string& value)
   // strtod accepts "inf" and "nan"; neither is a usable time budget.
   if (!std::isfinite(number) || !(number > 0.0)) fail();
   return number;
+}
+
+// A strict decimal number (the whole string), finite and within float's range: camera values end
+// up in float, where 1e300 would become infinity.
+bool parseFloatRange(const std::string& text, double& number) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return false;
+  errno = 0;
+  char* end = nullptr;
+  number = std::strtod(text.c_str(), &end);
+  return errno != ERANGE && end == text.c_str() + text.size() && std::isfinite(number) && std::abs(number) <= FLT_MAX;
+}
+
+// "X,Y,Z": three numbers separated by commas, nothing else.
+std::array<double, 3> parseVector(const std::string& option, const std::string& value) {
+  std::array<double, 3> v{};
+  size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const size_t comma = i < 2 ? value.find(',', start) : value.size();
+    if (comma == std::string::npos || (i == 2 && value.find(',', start) != std::string::npos) ||
+        !parseFloatRange(value.substr(start, comma - start), v[size_t(i)]))
+      throw Error("invalid value '" + value + "' for " + option + ": expected three finite numbers X,Y,Z");
+    start = comma + 1;
+  }
+  return v;
+}
+
+double parseFieldOfView(const std::string& option, const std::string& value) {
+  double degrees = 0.0;
+  if (!parseFloatRange(value, degrees) || !(degrees > 0.0 && degrees < 180.0))
+    throw Error("invalid value '" + value + "' for " + option +
+                ": expected a vertical field of view in degrees, between 0 and 180 (exclusive)");
+  return degrees;
 }
 
 std::string oneOf(const std::string& option, const std::string& value, const std::vector<std::string>& valid,
@@ -163,6 +197,15 @@ const RenderOptionSpec kOptionSpecs[] = {
     {"--variance", nullptr, false, [](RenderOptions& o, const std::string&, const std::string&) { o.variance = true; }},
     {"--asset-root", nullptr, true,
      [](RenderOptions& o, const std::string&, const std::string& v) { o.assetRoot = v; }},
+    // The camera (issue 11, point 5); checked as a whole in checkCameraOptions.
+    {"--look-from", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) { o.camera.lookFrom = parseVector(n, v); }},
+    {"--look-at", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) { o.camera.lookAt = parseVector(n, v); }},
+    {"--up", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) { o.camera.up = parseVector(n, v); }},
+    {"--fov", nullptr, true,
+     [](RenderOptions& o, const std::string& n, const std::string& v) { o.camera.fovDegrees = parseFieldOfView(n, v); }},
 };
 
 const CompareOptionSpec kCompareOptionSpecs[] = {
@@ -260,6 +303,7 @@ ParsedCommandLine parseRender(const std::vector<std::string>& args) {
     if (arg.empty()) throw Error("empty scene path");
     options.scene = arg;
   });
+  checkCameraOptions(options.camera);
   return result;
 }
 
@@ -357,16 +401,33 @@ std::string helpText() {
           "                       scene's own folder)\n"
           "\n"
           "Output:\n"
-          "  --out FILE.exr       image to write (default: <scene stem>.exr in the\n"
-          "                       current directory); float RGB, with spp, render\n"
-          "                       time, method and scene stored in the header\n"
-          "  --no-png             do not write the 8-bit sRGB preview (by default\n"
-          "                       FILE.png is written next to FILE.exr)\n"
+          "  --out FILE           image to write; its extension sets the format:\n"
+          "                       .exr (default: <scene stem>.exr in the current\n"
+          "                       directory) float RGB with spp, render time,\n"
+          "                       method, estimator and scene in the header, and\n"
+          "                       the 8-bit sRGB preview FILE.png beside it;\n"
+          "                       .png or .jpg: that tonemapped image only\n"
+          "  --no-png             do not write the PNG preview beside an EXR\n"
           "  --variance           also store the per-pixel variance of the mean, as\n"
           "                       EXR channels variance.R, variance.G, variance.B\n"
           "  --stats FILE.json    write render statistics (timings, sample counts)\n"
           "  -q, --quiet          no progress or information lines (errors still\n"
           "                       go to stderr)\n"
+          "  Outputs are checked before rendering (known format, directory\n"
+          "  writable, no two the same file, none the scene or its files) and\n"
+          "  written under a temporary name, renamed when complete. Ctrl-C (or\n"
+          "  SIGTERM) stops after the sample pass in flight and writes what has\n"
+          "  been rendered (the header and stats say how many spp), exit status\n"
+          "  130 (143); a second one aborts at once.\n"
+          "\n"
+          "Camera (render, and where view starts): replaces the parts of the file's\n"
+          "camera it sets; a file without one gets a default camera that frames\n"
+          "the scene's bounds from outside (an info line says where it is):\n"
+          "  --look-from X,Y,Z    where the camera is\n"
+          "  --look-at X,Y,Z      the point it looks at (not --look-from)\n"
+          "  --up X,Y,Z           up direction, not parallel to the view direction\n"
+          "                       (default: the file's camera's, or 0,1,0)\n"
+          "  --fov DEGREES        vertical field of view, 0 < DEGREES < 180\n"
           "\n"
           "Sampling:\n"
           "  --spp N              samples per pixel, N >= 1 (default: "
@@ -478,6 +539,7 @@ std::string helpText() {
           "  mixtrace render scenes/cornell_box.gltf --spp 256 --out cornell.exr\n"
           "  mixtrace render scene.glb --time 10 --width 640 --height 480\n"
           "  mixtrace render scene.glb --method=pt-uniform --backend=cpu --seed 7\n"
+          "  mixtrace render room.gltf --look-from 0,1.5,2 --look-at 0,1,0 --fov 60\n"
           "  mixtrace compare new.exr reference.exr --json report.json\n";
   return text.str();
 }

@@ -6,7 +6,9 @@
 //   mixtrace help | --help | -h        (also: mixtrace render --help)
 //   mixtrace --version
 // Parsing only: nothing here prints, touches files or resolves defaults that need the scene.
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,9 +20,19 @@ enum class Command { Render, Compare, View, Help, Version };
 // renderer should use this constant rather than its own literal.
 constexpr int kDefaultSpp = 16;
 
+// A camera set on the command line, as pbrt's LookAt and Mitsuba's sensor do (--look-from,
+// --look-at, --up, --fov). Each value given replaces that part of the camera the scene would
+// otherwise use (the file's, or the default framing); app/scene_camera.h combines them.
+struct CameraOptions {
+  std::optional<std::array<double, 3>> lookFrom, lookAt, up;
+  std::optional<double> fovDegrees;   // vertical field of view, in (0, 180)
+  bool any() const { return lookFrom || lookAt || up || fovDegrees; }
+};
+
 struct RenderOptions {
   std::string scene;             // empty -> default scene (resolved by the caller)
-  std::string out;               // empty -> "<scene stem>.exr" in the current directory
+  std::string out;               // empty -> "<scene stem>.exr" in the current directory; the
+                                 // extension picks the format (output/render_output.h)
   int spp = -1;                  // -1: not given
   double timeSeconds = -1.0;     // -1: not given; with spp too, stop at whichever comes first
   int width = 320, height = 240;
@@ -30,7 +42,7 @@ struct RenderOptions {
   uint32_t seed = 0;
   std::string statsPath;         // --stats FILE.json
   std::string device;            // --device INDEX|NAME-SUBSTRING; empty = first suitable device
-  bool png = true;               // --no-png disables the preview
+  bool png = true;               // --no-png disables the preview beside an EXR
   bool quiet = false;            // -q/--quiet
   bool validation = false;       // --validation: Vulkan validation layer
   bool generalPipelines = false; // --general-pipelines: no specialisation on scene features
@@ -41,6 +53,7 @@ struct RenderOptions {
   int trainSpp = 0;              // --train-spp N: no CMS solve after N spp (0 = no limit)
   bool floatAtomics = true;      // --float-atomics on|off: CMS statistics with float atomics or CAS loops
   std::string assetRoot;         // --asset-root DIR: external scene files may lie under DIR (default: scene's folder)
+  CameraOptions camera;          // --look-from, --look-at, --up, --fov
 };
 
 // `mixtrace compare`: a statistical test of whether two renders (written with --variance) estimate

@@ -8,12 +8,14 @@
 #include <memory>
 
 #include "app/method_setup.h"
+#include "app/output_plan.h"
+#include "app/scene_camera.h"
+#include "app/stop_on_signal.h"
 #include "output/render_output.h"
 #include "output/render_stats.h"
 #include "cms/cms_setup.h"
 #include "cpu/cpu_renderer.h"
 #include "render/wavefront_renderer.h"
-#include "scene/gltf_loader.h"
 #include "scene/prepared_scene.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -23,6 +25,28 @@
 
 namespace mixtrace {
 namespace {
+
+// "1 light", "3 lights".
+std::string counted(size_t count, const std::string& noun) {
+  return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
+}
+
+// An image with no pixel above zero is almost never what was meant; say why it may be so.
+void warnIfBlack(const Image& image, const PreparedScene& prepared) {
+  for (float v : image.rgb)
+    if (v > 0.0f) return;
+  const size_t lights = prepared.lights.lights.size();
+  if (lights == 0) {
+    warn("the image is entirely black: the scene has no lights");
+  } else if (!prepared.scene.camera.fromFile) {
+    warn("the image is entirely black although the scene has " + counted(lights, "light") +
+         "; the default camera looks at the scene from outside its bounds, where a closed room shows only "
+         "its outside: set a camera with --look-from X,Y,Z --look-at X,Y,Z");
+  } else {
+    warn("the image is entirely black although the scene has " + counted(lights, "light") +
+         " (is the camera inside a closed object, or facing away from the scene?)");
+  }
+}
 
 }  // namespace
 
@@ -38,13 +62,13 @@ std::string defaultScenePath() {
 }
 
 int runRender(const RenderOptions& o) {
-  namespace fs = std::filesystem;
   setQuiet(o.quiet);
   const std::string scenePath = o.scene.empty() ? defaultScenePath() : o.scene;
-  const std::string outPath = o.out.empty() ? fs::path(scenePath).stem().string() + ".exr" : o.out;
+  // Before anything slow: a typo in an output's name must not cost a render.
+  const OutputPlan outputs = planRenderOutputs(o, scenePath);
 
   auto setupStart = Clock::now();
-  MethodSetup setup = setUpMethod(loadGltf(scenePath, GltfLoadOptions{o.assetRoot}), o, o.method);
+  MethodSetup setup = setUpMethod(loadSceneForRendering(scenePath, o), o, o.method);
   const PreparedScene& prepared = setup.prepared;
   const RenderSettings& settings = setup.settings;
   const CmsScene& cms = setup.cms;
@@ -59,12 +83,14 @@ int runRender(const RenderOptions& o) {
   }
   Renderer& renderer = *backend;
   double setupSeconds = secondsSince(setupStart);
-  info("scene " + prepared.scene.name + ": " + std::to_string(prepared.scene.triangles.size()) + " triangles, " +
-       std::to_string(prepared.lights.lights.size()) + " lights; device " + renderer.deviceName() + "; " +
+  // From here on, Ctrl-C keeps what has been rendered (app/stop_on_signal.h).
+  StopOnSignal stop(!o.quiet);
+  info("scene " + prepared.scene.name + ": " + counted(prepared.scene.triangles.size(), "triangle") + ", " +
+       counted(prepared.lights.lights.size(), "light") + "; device " + renderer.deviceName() + "; " +
        prepared.features.describe());
 
   // Sample passes in batches: one sample first to measure, then batches of about 0.25 s so the
-  // progress line and --time react promptly without paying a submission per sample.
+  // progress line, --time and Ctrl-C react promptly without paying a submission per sample.
   const bool timed = o.timeSeconds > 0.0;
   const uint32_t targetSpp = o.spp > 0 ? uint32_t(o.spp) : (timed ? UINT32_MAX : kDefaultSpp);
   const double pixels = double(o.width) * o.height;
@@ -77,6 +103,7 @@ int runRender(const RenderOptions& o) {
   while (renderer.samplesPerPixel() < targetSpp) {
     uint32_t n = std::min(batch, targetSpp - renderer.samplesPerPixel());
     renderer.renderSamples(n);
+    if (stop.requested()) break;
     double elapsed = secondsSince(renderStart);
     if (timed && elapsed >= o.timeSeconds) break;
     double perSample = elapsed / renderer.samplesPerPixel();
@@ -89,6 +116,10 @@ int runRender(const RenderOptions& o) {
   }
   double renderSeconds = secondsSince(renderStart);
   progress.finish();
+  // Decided here: a signal during the writes below is only a request to stop early, and the
+  // render has already ended.
+  const std::string stoppedBy = stop.signalName();
+  const int stopExitCode = stop.exitCode();
 
   Image variance;
   Image image = renderer.readImage(o.variance ? &variance : nullptr);
@@ -105,6 +136,8 @@ int runRender(const RenderOptions& o) {
   stats.maxDepth = uint32_t(o.maxDepth);
   stats.seed = o.seed;
   stats.spp = renderer.samplesPerPixel();
+  stats.targetSpp = timed && o.spp <= 0 ? 0 : targetSpp;
+  stats.interruptedBy = stoppedBy;
   stats.renderSeconds = renderSeconds;
   stats.setupSeconds = setupSeconds;
   stats.bvhBuildSeconds = prepared.bvh.buildSeconds;
@@ -127,20 +160,26 @@ int runRender(const RenderOptions& o) {
          " vertices; they used no control variate (still unbiased); a smaller --cells fits");
   stats.validationErrors = ctx ? ctx->validationErrors() : 0;
   stats.passMs = renderer.passTimesMs();
+  if (!stoppedBy.empty())
+    warn("stopped by " + stats.interruptedBy + " after " + std::to_string(stats.spp) +
+         (stats.targetSpp > 0 ? " of " + std::to_string(stats.targetSpp) : std::string()) +
+         " spp; writing what has been rendered");
 
-  writeRenderOutput(outPath, image, o.variance ? &variance : nullptr,
-                    RenderOutputInfo{o.method, prepared.scene.name, int(stats.spp), renderSeconds}, o.png);
-  if (!o.statsPath.empty()) writeStatsJson(o.statsPath, stats);
+  RenderOutputInfo written{o.method, estimator, prepared.scene.name, int(stats.spp), int(stats.targetSpp),
+                           renderSeconds, stats.interruptedBy};
+  writeRenderOutput(outputs.image, image, o.variance ? &variance : nullptr, written, o.png);
+  if (!outputs.stats.empty()) writeStatsJson(outputs.stats, stats);
 
-  info("wrote " + outPath + ": " + std::to_string(stats.spp) + " spp in " + std::to_string(renderSeconds) + " s, " +
-       formatRate(stats.samplesPerSecond()) + " samples/s, " + formatRate(stats.raysPerSecond()) + " rays/s");
+  info("wrote " + outputs.image + ": " + std::to_string(stats.spp) + " spp in " + std::to_string(renderSeconds) +
+       " s, " + formatRate(stats.samplesPerSecond()) + " samples/s, " + formatRate(stats.raysPerSecond()) + " rays/s");
+  warnIfBlack(image, prepared);
   if (stats.nonFiniteSamples > 0)
     warn(std::to_string(stats.nonFiniteSamples) + " non-finite samples were dropped from the image");
   if (stats.validationErrors > 0) {
     std::fprintf(stderr, "mixtrace: error: the Vulkan validation layer reported %u error(s)\n", stats.validationErrors);
     return 1;
   }
-  return 0;
+  return stopExitCode;
 }
 
 }  // namespace mixtrace

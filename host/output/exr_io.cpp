@@ -18,6 +18,7 @@
 
 #include <sys/stat.h>
 
+#include "output/atomic_file.h"
 #include "util/error.h"
 
 namespace mixtrace {
@@ -100,13 +101,16 @@ void writeExr(const std::string& path, const Image& image, const ExrMetadata& me
     addSlices(frameBuffer, kVarianceChannels, const_cast<Image&>(*variance), 0, 0);
   }
 
-  try {
-    Imf::OutputFile file(path.c_str(), header);
-    file.setFrameBuffer(frameBuffer);
-    file.writePixels(image.height);
-  } catch (const std::exception& e) {
-    throw Error("cannot write EXR '" + path + "': " + oneLine(e.what()));
-  }
+  // To a temporary file, renamed when complete: an interrupted write leaves no truncated EXR.
+  writeFileAtomically(path, [&](const std::string& temporaryPath) {
+    try {
+      Imf::OutputFile file(temporaryPath.c_str(), header);
+      file.setFrameBuffer(frameBuffer);
+      file.writePixels(image.height);
+    } catch (const std::exception& e) {
+      throw Error("cannot write EXR '" + path + "': " + oneLine(e.what()));
+    }
+  });
 }
 
 namespace {

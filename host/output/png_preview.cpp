@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "output/atomic_file.h"
 #include "shared/display.h"
 #include "util/error.h"
 
@@ -28,20 +29,43 @@ unsigned char linearToSrgb8(float linear, float exposure) {
   return static_cast<unsigned char>(std::lround(shared::srgbEncode(value) * 255.0f));
 }
 
-void writePngPreview(const std::string& path, const Image& image, float exposure) {
+namespace {
+
+// stb's writers call this with pieces of the encoded file; collected so that the file is written
+// in one go, atomically.
+void appendBytes(void* context, void* data, int size) {
+  static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+}
+
+std::vector<unsigned char> tonemapped(const std::string& path, const Image& image, float exposure) {
   if (image.width <= 0 || image.height <= 0 || image.rgb.size() != image.pixelCount() * 3)
-    throw Error("cannot write PNG '" + path + "': image is empty or its size does not match its pixels");
+    throw Error("cannot write '" + path + "': image is empty or its size does not match its pixels");
   std::vector<unsigned char> bytes(image.rgb.size());
   for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = linearToSrgb8(image.rgb[i], exposure);
-  const int rowBytes = image.width * 3;
-  if (!stbi_write_png(path.c_str(), image.width, image.height, 3, bytes.data(), rowBytes))
-    throw Error("cannot write PNG '" + path + "'");
+  return bytes;
+}
+
+}  // namespace
+
+void writePngPreview(const std::string& path, const Image& image, float exposure) {
+  writePng8(path, image.width, image.height, tonemapped(path, image, exposure));
+}
+
+void writeJpegPreview(const std::string& path, const Image& image, float exposure) {
+  const std::vector<unsigned char> rgb = tonemapped(path, image, exposure);
+  std::string encoded;
+  if (!stbi_write_jpg_to_func(appendBytes, &encoded, image.width, image.height, 3, rgb.data(), kJpegQuality))
+    throw Error("cannot encode JPEG '" + path + "'");
+  writeFileAtomically(path, encoded);
 }
 
 void writePng8(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb) {
   if (width <= 0 || height <= 0 || rgb.size() != size_t(width) * size_t(height) * 3)
     throw Error("cannot write PNG '" + path + "': its size does not match its pixels");
-  if (!stbi_write_png(path.c_str(), width, height, 3, rgb.data(), width * 3)) throw Error("cannot write PNG '" + path + "'");
+  std::string encoded;
+  if (!stbi_write_png_to_func(appendBytes, &encoded, width, height, 3, rgb.data(), width * 3))
+    throw Error("cannot encode PNG '" + path + "'");
+  writeFileAtomically(path, encoded);
 }
 
 std::string defaultPreviewPath(const std::string& exrPath) {

@@ -1,5 +1,6 @@
 #pragma once
-// An 8-bit sRGB PNG next to the EXR, for a quick look; the EXR stays the result.
+// An 8-bit sRGB PNG next to the EXR, for a quick look; the EXR stays the result. (Or, for
+// --out FILE.png/.jpg, the only output.) Files are written atomically (output/atomic_file.h).
 #include <string>
 #include <vector>
 
@@ -11,6 +12,10 @@ namespace mixtrace {
 // and rounds to 8 bits. Non-finite input values (NaN, +-Inf) become black, so a broken pixel
 // is visible rather than written as garbage. Throws mixtrace::Error when the file cannot be written.
 void writePngPreview(const std::string& path, const Image& image, float exposure = 1.0f);
+
+// The same tonemapping as a JPEG file (quality kJpegQuality), for --out FILE.jpg.
+constexpr int kJpegQuality = 95;
+void writeJpegPreview(const std::string& path, const Image& image, float exposure = 1.0f);
 
 // 8-bit sRGB bytes as they are (the viewer's screenshots), 3 per pixel, top row first.
 void writePng8(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb);

@@ -1,10 +1,8 @@
 #include "output/render_stats.h"
 
-#include <fstream>
-
 #include <nlohmann/json.hpp>
 
-#include "util/error.h"
+#include "output/atomic_file.h"
 
 namespace mixtrace {
 
@@ -29,6 +27,9 @@ void writeStatsJson(const std::string& path, const RenderStats& s) {
   j["max_depth"] = s.maxDepth;
   j["seed"] = s.seed;
   j["spp"] = s.spp;
+  if (s.targetSpp > 0) j["target_spp"] = s.targetSpp;
+  j["interrupted"] = !s.interruptedBy.empty();
+  if (!s.interruptedBy.empty()) j["interrupted_by"] = s.interruptedBy;
   j["render_seconds"] = s.renderSeconds;
   j["setup_seconds"] = s.setupSeconds;
   j["samples_per_second"] = s.samplesPerSecond();
@@ -52,10 +53,7 @@ void writeStatsJson(const std::string& path, const RenderStats& s) {
   nlohmann::json passes = nlohmann::json::object();
   for (auto& [name, ms] : s.passMs) passes[name] = ms;
   j["gpu_pass_ms"] = passes;
-  std::ofstream f(path);
-  if (!f) throw Error("cannot write stats file " + path);
-  f << j.dump(2) << "\n";
-  if (!f) throw Error("cannot write stats file " + path);
+  writeFileAtomically(path, j.dump(2) + "\n");
 }
 
 }  // namespace mixtrace

@@ -11,6 +11,8 @@ struct RenderStats {
   std::string estimator;   // what ran: the method, or pt-power where cms reduces to it (cms/cms_setup.h)
   uint32_t width = 0, height = 0, maxDepth = 0, seed = 0;
   uint32_t spp = 0;
+  uint32_t targetSpp = 0;       // what was asked for; 0 when open-ended (--time)
+  std::string interruptedBy;    // "SIGINT"/"SIGTERM" when stopped early, with spp < targetSpp
   double renderSeconds = 0.0;   // sample passes only, excluding set-up
   double setupSeconds = 0.0;    // loading, BVH, upload, pipeline creation
   double bvhBuildSeconds = 0.0;
@@ -28,6 +30,7 @@ struct RenderStats {
   double raysPerSecond() const;
 };
 
+// Written atomically (output/atomic_file.h).
 void writeStatsJson(const std::string& path, const RenderStats& stats);
 
 }  // namespace mixtrace

@@ -38,16 +38,19 @@ PreparedScene prepareScene(Scene scene, LightSelection selection) {
   return p;
 }
 
+Camera defaultFraming(const Scene& scene) {
+  // Frame the bounding sphere from +Z, looking down -Z, with the default field of view.
+  Camera cam;
+  float radius = std::max(0.5f * glm::length(scene.bounds.extent()), 1e-6f);
+  float distance = radius / std::sin(0.5f * cam.yfov) * 1.05f;
+  cam.forward = glm::vec3(0.0f, 0.0f, -1.0f);
+  cam.up = glm::vec3(0.0f, 1.0f, 0.0f);
+  cam.position = scene.bounds.center() - distance * cam.forward;
+  return cam;
+}
+
 shared::CameraGpu makeCamera(const Scene& scene, uint32_t width, uint32_t height) {
-  Camera cam = scene.camera;
-  if (!cam.fromFile) {
-    // Frame the bounding sphere from +Z, looking down -Z, with the default field of view.
-    float radius = std::max(0.5f * glm::length(scene.bounds.extent()), 1e-6f);
-    float distance = radius / std::sin(0.5f * cam.yfov) * 1.05f;
-    cam.forward = glm::vec3(0.0f, 0.0f, -1.0f);
-    cam.up = glm::vec3(0.0f, 1.0f, 0.0f);
-    cam.position = scene.bounds.center() - distance * cam.forward;
-  }
+  const Camera cam = scene.camera.fromFile ? scene.camera : defaultFraming(scene);
   shared::CameraGpu c{};
   c.position = cam.position;
   c.forward = glm::normalize(cam.forward);

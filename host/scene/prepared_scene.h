@@ -26,6 +26,10 @@ struct PreparedScene {
 
 PreparedScene prepareScene(Scene scene, LightSelection selection);
 
+// The camera used when the file has none and the command line sets none: the bounding sphere
+// framed from +Z, looking down -Z (its target is the bounds' centre).
+Camera defaultFraming(const Scene& scene);
+
 // The pinhole camera for an image of width x height: the file's camera, or a framing of the
 // scene bounds looking down -Z when the file has none.
 shared::CameraGpu makeCamera(const Scene& scene, uint32_t width, uint32_t height);

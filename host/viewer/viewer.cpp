@@ -10,7 +10,9 @@
 #include <memory>
 
 #include "app/method_setup.h"
+#include "app/output_plan.h"
 #include "app/render_command.h"
+#include "app/scene_camera.h"
 #include "output/png_preview.h"
 #include "output/render_output.h"
 #include "render/wavefront_renderer.h"
@@ -86,7 +88,7 @@ int windowScale(const RenderOptions& o) { return std::max(1, 640 / std::max(o.wi
 
 Viewer::Viewer(const RenderOptions& o, const std::string& scriptPath)
     : options_(o),
-      scene_(loadGltf(o.scene.empty() ? defaultScenePath() : o.scene, GltfLoadOptions{o.assetRoot})),
+      scene_(loadSceneForRendering(o.scene.empty() ? defaultScenePath() : o.scene, o)),
       window_(o.width * windowScale(o), o.height * windowScale(o), "mixtrace"),
       ctx_(ContextOptions{o.device, o.validation, window_.vulkanInstanceExtensions(),
                           [this](VkInstance instance) { return window_.createSurface(instance); }}),
@@ -269,9 +271,16 @@ void Viewer::save() {
     path = stem + ".exr";
     for (int i = 2; fs::exists(path); ++i) path = stem + "-" + std::to_string(i) + ".exr";
   }
-  writeRenderOutput(path, image, &variance,
-                    RenderOutputInfo{method_, sceneName_, int(v.renderer->samplesPerPixel()), v.seconds}, true);
-  info("saved " + path + " and its PNG (" + std::to_string(v.renderer->samplesPerPixel()) + " spp)");
+  RenderOutputInfo written;
+  written.method = method_;
+  written.estimator = v.setup.estimator;
+  written.scene = sceneName_;
+  written.spp = int(v.renderer->samplesPerPixel());
+  written.seconds = v.seconds;
+  writeRenderOutput(path, image, &variance, written, options_.png);
+  const std::string preview = previewPathFor(path, options_.png);
+  info("saved " + path + (preview.empty() ? "" : " and " + preview) + " (" +
+       std::to_string(v.renderer->samplesPerPixel()) + " spp)");
 }
 
 std::string Viewer::title() const {
@@ -341,6 +350,8 @@ int runViewer(const RenderOptions& options, const std::string& scriptPath) {
   if (options.backend != "vulkan") throw Error("view renders with the Vulkan backend only (drop --backend cpu)");
   if (options.timeSeconds > 0.0) throw Error("--time is not used by view (it renders until the window closes)");
   if (!options.statsPath.empty()) throw Error("--stats is not used by view (press P to save the film)");
+  // Where P saves, checked before the window opens rather than when the key is pressed.
+  checkViewerOutputs(options, options.scene.empty() ? defaultScenePath() : options.scene);
   Viewer viewer(options, scriptPath);
   return viewer.run();
 }

@@ -293,5 +293,43 @@ TEST(Options, CompareRejectsBadValues) {
   expectOneLineMentioning(errorOf({"compare", "a.exr", "b.exr", "--quiet=1"}), "--quiet");
 }
 
+// --look-from, --look-at, --up, --fov (issue 11, point 5): three finite float-range numbers, a
+// field of view strictly between 0 and 180 degrees, and a frame that is a camera.
+TEST(Options, CameraOptions) {
+  const RenderOptions o =
+      parse({"render", "--look-from", "1,2.5,-3", "--look-at=-1,0,1e3", "--up", "0,0,1", "--fov", "60"}).render;
+  ASSERT_TRUE(o.camera.lookFrom && o.camera.lookAt && o.camera.up && o.camera.fovDegrees);
+  EXPECT_EQ(*o.camera.lookFrom, (std::array<double, 3>{1.0, 2.5, -3.0}));
+  EXPECT_EQ(*o.camera.lookAt, (std::array<double, 3>{-1.0, 0.0, 1000.0}));
+  EXPECT_EQ(*o.camera.up, (std::array<double, 3>{0.0, 0.0, 1.0}));
+  EXPECT_DOUBLE_EQ(*o.camera.fovDegrees, 60.0);
+  EXPECT_FALSE(parse({"render"}).render.camera.any());
+  EXPECT_TRUE(parse({"view", "--fov", "30"}).render.camera.any()) << "view takes render's camera options";
+
+  for (const char* bad : {"1,2", "1,2,3,4", "1,,3", "a,b,c", "1,2,3x", " 1,2,3", "nan,0,0", "inf,0,0", "0,1e39,0",
+                          "1e300,0,0", ""})
+    expectOneLineMentioning(errorOf({"render", "--look-from", bad}), "--look-from");
+  expectOneLineMentioning(errorOf({"render", "--look-at", "0,0"}), "--look-at");
+  expectOneLineMentioning(errorOf({"render", "--up", "x,y,z"}), "--up");
+  for (const char* bad : {"0", "180", "-10", "200", "nan", "inf", "45deg"})
+    expectOneLineMentioning(errorOf({"render", "--fov", bad}), "--fov");
+  EXPECT_DOUBLE_EQ(*parse({"render", "--fov", "179.5"}).render.camera.fovDegrees, 179.5);
+
+  expectOneLineMentioning(errorOf({"render", "--look-from", "1,2,3", "--look-at", "1,2,3"}), "same point");
+  expectOneLineMentioning(errorOf({"render", "--up", "0,0,0"}), "--up");
+  expectOneLineMentioning(errorOf({"render", "--look-from", "0,5,0", "--look-at", "0,0,0", "--up", "0,1,0"}),
+                          "parallel");
+  expectOneLineMentioning(errorOf({"render", "--look-from", "0,5,0", "--look-at", "0,0,0", "--up", "0,-3,0"}),
+                          "parallel");
+  EXPECT_NO_THROW(parse({"render", "--look-from", "0,5,0", "--look-at", "0,0,0", "--up", "0,0,-1"}));
+}
+
+TEST(Options, HelpTextDocumentsCameraAndOutputFormats) {
+  const std::string help = helpText();
+  for (const char* needle : {"--look-from X,Y,Z", "--look-at X,Y,Z", "--up X,Y,Z", "--fov DEGREES", ".png or .jpg",
+                             "Ctrl-C", "130"})
+    EXPECT_NE(help.find(needle), std::string::npos) << "help text lacks: " << needle;
+}
+
 }  // namespace
 }  // namespace mixtrace

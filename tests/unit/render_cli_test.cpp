@@ -202,3 +202,15 @@ TEST(VarianceOutput, WritesVarianceOfTheMean) {
   }
   EXPECT_GT(positive, 0.1 * variance.rgb.size()) << "a noisy render has non-zero variance in many pixels";
 }
+
+// stderr that is not a terminal (this test's file, a CI log) gets a plain progress line every
+// Progress::kLogIntervalSeconds (5 s) instead of nothing; no carriage returns.
+TEST(ProgressInLogs, APlainLineEveryFewSeconds) {
+  fs::path dir = scratchDir("progress");
+  RunResult r = runMixtrace("render --backend cpu --width 16 --height 12 --time 5.6 --no-png --out " +
+                            (dir / "p.exr").string());
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_NE(r.stderrText.find("% "), std::string::npos) << "no progress line in:\n" << r.stderrText;
+  EXPECT_NE(r.stderrText.find(" spp, "), std::string::npos) << r.stderrText;
+  EXPECT_EQ(r.stderrText.find('\r'), std::string::npos) << r.stderrText;
+}

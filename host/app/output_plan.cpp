@@ -1,0 +1,53 @@
+#include "app/output_plan.h"
+
+#include <filesystem>
+#include <vector>
+
+#include "app/scene_files.h"
+#include "output/output_paths.h"
+#include "output/render_output.h"
+#include "util/error.h"
+
+namespace mixtrace {
+namespace {
+
+// The image and its preview, from --out (its extension decides the format).
+OutputPlan imageOutputs(const std::string& image, const RenderOptions& o) {
+  ImageFormat format;
+  try {
+    format = imageFormatOf(image);
+  } catch (const Error& e) {
+    throw Error(std::string("--out: ") + e.what());
+  }
+  if (o.variance && format != ImageFormat::Exr)
+    throw Error("--variance needs an .exr --out ('" + image + "' would hold only the tonemapped image)");
+  OutputPlan plan;
+  plan.image = image;
+  plan.preview = previewPathFor(image, o.png);
+  return plan;
+}
+
+void checkFiles(const OutputPlan& plan, const std::string& scenePath) {
+  std::vector<NamedFile> outputs = {{"--out", plan.image}};
+  if (!plan.preview.empty()) outputs.push_back({"the PNG preview beside --out", plan.preview});
+  if (!plan.stats.empty()) outputs.push_back({"--stats", plan.stats});
+  std::vector<NamedFile> inputs = {{"the scene", scenePath}};
+  for (const std::string& file : filesReferencedByScene(scenePath)) inputs.push_back({"the scene's file", file});
+  checkNoSharedFiles(outputs, inputs);
+  for (const NamedFile& output : outputs) checkWritableOutput(output);
+}
+
+}  // namespace
+
+OutputPlan planRenderOutputs(const RenderOptions& o, const std::string& scenePath) {
+  OutputPlan plan = imageOutputs(o.out.empty() ? std::filesystem::path(scenePath).stem().string() + ".exr" : o.out, o);
+  plan.stats = o.statsPath;
+  checkFiles(plan, scenePath);
+  return plan;
+}
+
+void checkViewerOutputs(const RenderOptions& o, const std::string& scenePath) {
+  if (!o.out.empty()) checkFiles(imageOutputs(o.out, o), scenePath);
+}
+
+}  // namespace mixtrace
