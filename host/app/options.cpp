@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "compare/image_compare.h"
 #include "util/error.h"
 
 namespace mixtrace {
@@ -468,10 +469,17 @@ std::string helpText() {
           "  --error-map FILE.pfm with --error-only: also write A's per-pixel\n"
           "                       relative squared error (the terms relMSE averages)\n"
           "                       as a one-channel PFM image, for false-colour plots\n"
+          "  Inconclusive: no difference found, but the image-mean test would miss\n"
+          "  a difference of "
+       << std::lround(100 * kInconclusiveDifference) << "% in some channel more often than "
+       << std::lround(100 * (1 - kDetectionPower))
+       << "% of the time\n"
+          "  (its variance is too large: render more spp or a larger image).\n"
           "  Exit status: "
        << kCompareExitAgree << " the images agree, " << kCompareExitDiffer << " they differ, " << kCompareExitError
        << " error (bad\n"
-          "  arguments, unreadable file, no variance, different sizes).\n"
+          "  arguments, unreadable file, no variance, different sizes), "
+       << kCompareExitInconclusive << " inconclusive.\n"
           "\n"
           "Examples:\n"
           "  mixtrace render\n"

@@ -59,6 +59,7 @@ struct CompareOptions {
 constexpr int kCompareExitAgree = 0;
 constexpr int kCompareExitDiffer = 1;
 constexpr int kCompareExitError = 2;
+constexpr int kCompareExitInconclusive = 3;   // no difference found, but too little power to tell
 
 struct ParsedCommandLine {
   Command command = Command::Help;
