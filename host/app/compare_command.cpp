@@ -40,7 +40,8 @@ int runCompare(const CompareOptions& options) {
     std::printf("%s\n", result.summary().c_str());
     std::fflush(stdout);
   }
-  return result.agree ? kCompareExitAgree : kCompareExitDiffer;
+  if (!result.agree) return kCompareExitDiffer;
+  return result.inconclusive ? kCompareExitInconclusive : kCompareExitAgree;
 }
 
 }  // namespace mixtrace

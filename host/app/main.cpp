@@ -11,6 +11,7 @@
 #include "app/render_command.h"
 #include "util/error.h"
 #include "viewer/viewer.h"
+#include "vulkan/context.h"
 
 int main(int argc, char** argv) {
   using namespace mixtrace;
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
     switch (cl.command) {
       case Command::Help: std::fputs(helpText().c_str(), stdout); return 0;
       case Command::Version: std::printf("mixtrace %s\n", MIXTRACE_VERSION); return 0;
+      case Command::ListDevices: std::fputs(describeVulkanDevices().c_str(), stdout); return 0;
       case Command::Render: return runRender(cl.render);
       case Command::Compare: return runCompare(cl.compare);
       case Command::View: return runViewer(cl.render, cl.viewScript);

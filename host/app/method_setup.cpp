@@ -30,8 +30,7 @@ MethodSetup setUpMethod(const Scene& scene, const RenderOptions& o, const std::s
   if (s.cms.clusters) m.cms = setUpClusters(m.prepared, uint32_t(o.maxClusters), s.cms.defaults);
   m.estimator = method;
   if (cmsReducesToPlainMis(s.cms, m.cms)) {
-    info("cms: the scene's lights form one cluster, so there is no light selection to learn and the control "
-         "variate alone does not pay; rendering with plain MIS (pt-power's estimator; --method cv forces it)");
+    info(plainMisNote(m.cms));
     s.cms = CmsMethod{};
     m.estimator = "pt-power";
   }

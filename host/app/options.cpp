@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "compare/image_compare.h"
 #include "app/scene_camera.h"
 #include "util/error.h"
 
@@ -367,6 +368,11 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
     result.command = Command::Version;
     return result;
   }
+  if (command == "--list-devices") {
+    if (args.size() > 1) throw Error("unexpected argument '" + args[1] + "' after --list-devices");
+    result.command = Command::ListDevices;
+    return result;
+  }
   if (command == "render") return parseRender(std::vector<std::string>(args.begin() + 1, args.end()));
   if (command == "compare") return parseCompare(std::vector<std::string>(args.begin() + 1, args.end()));
   if (command == "view") return parseView(std::vector<std::string>(args.begin() + 1, args.end()));
@@ -391,6 +397,8 @@ std::string helpText() {
           "  mixtrace view [SCENE] [options]    open a window and watch SCENE converge\n"
           "  mixtrace help | --help | -h         print this text (or: render --help)\n"
           "  mixtrace --version                  print the version\n"
+          "  mixtrace --list-devices             list the Vulkan devices: index, name,\n"
+          "                                     type, driver, whether usable\n"
           "\n"
           "Without SCENE, the default scene shipped with mixtrace is rendered.\n"
           "Options take their value as '--opt value' or '--opt=value'.\n"
@@ -484,8 +492,11 @@ std::string helpText() {
           "                       multithreaded CPU reference) (default: "
        << defaults.backend
        << ")\n"
-          "  --device INDEX|NAME  Vulkan device: its index or a substring of its\n"
-          "                       name (default: the first suitable device)\n"
+          "  --device INDEX|NAME  Vulkan device: its index in --list-devices (a\n"
+          "                       number is always an index), or a part of its name\n"
+          "                       (any case) that matches one device only (default:\n"
+          "                       the first usable discrete GPU, else the first\n"
+          "                       usable device)\n"
           "  --validation         enable the Vulkan validation layer (slow)\n"
           "  --general-pipelines  do not specialise the GPU pipelines on the\n"
           "                       scene's features (testing aid; same image)\n"
@@ -526,10 +537,17 @@ std::string helpText() {
           "  --error-map FILE.pfm with --error-only: also write A's per-pixel\n"
           "                       relative squared error (the terms relMSE averages)\n"
           "                       as a one-channel PFM image, for false-colour plots\n"
+          "  Inconclusive: no difference found, but the image-mean test would miss\n"
+          "  a difference of "
+       << std::lround(100 * kInconclusiveDifference) << "% in some channel more often than "
+       << std::lround(100 * (1 - kDetectionPower))
+       << "% of the time\n"
+          "  (its variance is too large: render more spp or a larger image).\n"
           "  Exit status: "
        << kCompareExitAgree << " the images agree, " << kCompareExitDiffer << " they differ, " << kCompareExitError
        << " error (bad\n"
-          "  arguments, unreadable file, no variance, different sizes).\n"
+          "  arguments, unreadable file, no variance, different sizes), "
+       << kCompareExitInconclusive << " inconclusive.\n"
           "\n"
           "Examples:\n"
           "  mixtrace render\n"

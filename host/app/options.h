@@ -5,6 +5,7 @@
 //   mixtrace view [SCENE] [options] [--script FILE]
 //   mixtrace help | --help | -h        (also: mixtrace render --help)
 //   mixtrace --version
+//   mixtrace --list-devices           (the Vulkan devices --device can name)
 // Parsing only: nothing here prints, touches files or resolves defaults that need the scene.
 #include <array>
 #include <cstdint>
@@ -14,7 +15,7 @@
 
 namespace mixtrace {
 
-enum class Command { Render, Compare, View, Help, Version };
+enum class Command { Render, Compare, View, Help, Version, ListDevices };
 
 // Samples per pixel used when neither --spp nor --time is given. The help text quotes it, so the
 // renderer should use this constant rather than its own literal.
@@ -72,6 +73,7 @@ struct CompareOptions {
 constexpr int kCompareExitAgree = 0;
 constexpr int kCompareExitDiffer = 1;
 constexpr int kCompareExitError = 2;
+constexpr int kCompareExitInconclusive = 3;   // no difference found, but too little power to tell
 
 struct ParsedCommandLine {
   Command command = Command::Help;

@@ -35,4 +35,8 @@ CmsScene setUpClusters(PreparedScene& scene, uint32_t maxClusters, LightSelectio
 // asked.
 bool cmsReducesToPlainMis(const CmsMethod& method, const CmsScene& scene);
 
+// The line that says why cms runs as plain MIS on this scene (cmsReducesToPlainMis): that its
+// lights form one cluster, or that it has none at all.
+std::string plainMisNote(const CmsScene& scene);
+
 }  // namespace mixtrace

@@ -172,8 +172,17 @@ ComparisonResult compareImages(const Image& a, const Image& varA, const Image& b
     if (sumVar[c] > 0.0) r.meanRatioZ[c] = (sumA[c] - sumB[c]) / std::sqrt(sumVar[c]);
     else r.meanRatioZ[c] = agreeExactly(sumA[c], sumB[c]) ? 0.0 : std::copysign(INFINITY, sumA[c] - sumB[c]);
     if (!(std::abs(r.meanRatioZ[c]) < r.meanZThreshold)) r.meanTestPassed = false;
+    // |sumA - sumB| = delta |sumB| is found with probability kDetectionPower when it is
+    // (threshold + z_power) standard deviations, sqrt(sumVar), of the difference.
+    const double reference = sumB[c] != 0.0 ? std::abs(sumB[c]) : std::abs(sumA[c]);
+    if (sumVar[c] > 0.0)
+      r.minDetectable[c] = reference > 0.0 ? (r.meanZThreshold + normalUpperQuantile(1.0 - kDetectionPower)) *
+                                                 std::sqrt(sumVar[c]) / reference
+                                           : INFINITY;
+    r.minDetectableDifference = std::max(r.minDetectableDifference, r.minDetectable[c]);
   }
   r.agree = r.pixelTestPassed && r.meanTestPassed;
+  r.inconclusive = r.agree && !(r.minDetectableDifference <= kInconclusiveDifference);
   r.relMse = relativeMse(a, b);
   return r;
 }
@@ -209,16 +218,20 @@ double relativeMseOfExrFiles(const std::string& pathA, const std::string& pathB)
   return relativeMse(a, b);
 }
 
+const char* ComparisonResult::verdict() const { return !agree ? "differ" : inconclusive ? "inconclusive" : "agree"; }
+
 std::string ComparisonResult::summary() const {
-  char line[512];
+  char line[640];
   std::snprintf(line, sizeof(line),
                 "%s: %zu of %zu pixel-channels fail |z| > %.2f (%.3f%%, %zu allowed), relMSE %.4g, "
-                "mean ratio R %.4f G %.4f B %.4f (z %.2f %.2f %.2f, limit %.2f)",
-                agree ? "agree" : "differ", failed, channels, zThreshold, 100.0 * failFraction, allowedFailures,
-                relMse, meanRatio[0], meanRatio[1], meanRatio[2], meanRatioZ[0], meanRatioZ[1], meanRatioZ[2],
-                meanZThreshold);
+                "mean ratio R %.4f G %.4f B %.4f (z %.2f %.2f %.2f, limit %.2f), "
+                "detectable mean difference %.3g%% (at most %.0f%% for a verdict)",
+                verdict(), failed, channels, zThreshold, 100.0 * failFraction, allowedFailures, relMse,
+                meanRatio[0], meanRatio[1], meanRatio[2], meanRatioZ[0], meanRatioZ[1], meanRatioZ[2], meanZThreshold,
+                100.0 * minDetectableDifference, 100.0 * kInconclusiveDifference);
   std::string text = line;
   if (nonFinite) text += ", " + std::to_string(nonFinite) + " non-finite values";
+  if (inconclusive) text += "; too little power to tell: render more spp or a larger image";
   return text;
 }
 
@@ -247,6 +260,10 @@ void writeComparisonJson(const std::string& path, const ComparisonResult& r, con
   j["pixel_test_passed"] = r.pixelTestPassed;
   j["mean_test_passed"] = r.meanTestPassed;
   j["agree"] = r.agree;
+  j["inconclusive"] = r.inconclusive;
+  j["verdict"] = r.verdict();
+  j["min_detectable"] = {r.minDetectable[0], r.minDetectable[1], r.minDetectable[2]};
+  j["min_detectable_difference"] = r.minDetectableDifference;
   j["summary"] = r.summary();
   std::ofstream out(path);
   if (!out) throw Error("cannot write comparison report '" + path + "'");

@@ -38,6 +38,19 @@
 //          AND no non-finite value (NaN/Inf) or negative variance in any of the four images
 //          (such pixel-channels also count as failed and are left out of the image means).
 //
+//  3. Power, for "inconclusive": finding no difference means little when the test could not
+//     have found one (two 16-spp renders of a hard scene "agreed" with relMSE 7). A power
+//     analysis of the image-mean test gives, per channel, the smallest relative difference of the
+//     image means it detects with probability kDetectionPower = 80 %:
+//         minDetectable_c = (meanZThreshold + Phi^-1(0.8)) * sqrt(sum_p (varA + varB)) / |sum_p b|
+//     (0 for a channel compared exactly; the far opposite tail is neglected). The image mean is
+//     the most sensitive part of the rule to any difference that brightens or darkens the image,
+//     so when it cannot resolve kInconclusiveDifference = 10 % neither can the rest:
+//         inconclusive = agree AND max_c minDetectable_c > 10 %
+//     (verdict "inconclusive", exit status 3: render more spp or a larger image; the detectable
+//     difference shrinks as 1/sqrt(spp * pixels)). "differ" is never inconclusive: a significant
+//     difference is evidence whatever the power.
+//
 // relMse follows the paper's protocol (shared/cms.md §8), with B as the reference: per pixel
 // e = (1/3) sum_c (a - b)^2 / (b^2 + 1e-4); the floor(0.001 * P) largest e are dropped (none for
 // images under 1000 pixels) and the rest averaged.
@@ -47,6 +60,11 @@
 #include "output/image.h"
 
 namespace mixtrace {
+
+// The power analysis behind "inconclusive" (rule 3 above): the relative difference of the image
+// means that must be detectable, and with what probability. (--help quotes them.)
+constexpr double kInconclusiveDifference = 0.10;
+constexpr double kDetectionPower = 0.80;
 
 struct ComparisonResult {
   int width = 0, height = 0;
@@ -63,11 +81,17 @@ struct ComparisonResult {
   double meanA[3] = {0, 0, 0}, meanB[3] = {0, 0, 0};  // per-channel image means
   double meanRatio[3] = {1, 1, 1};   // per channel: mean(A) / mean(B) (1 when both are 0)
   double meanRatioZ[3] = {0, 0, 0};  // z-score of the image-mean difference (from the summed variances)
+  double minDetectable[3] = {0, 0, 0};  // per channel: relative mean difference found with 80 % power
+  double minDetectableDifference = 0;   // the largest of minDetectable
   bool pixelTestPassed = true;
   bool meanTestPassed = true;
-  bool agree = true;            // the verdict
+  bool agree = true;            // no significant difference (also when inconclusive)
+  bool inconclusive = false;    // agree, but a 10 % difference of the image means could go unseen
 
-  // One line: verdict, fraction failing, relMSE, per-channel mean ratios and their z-scores.
+  // "agree", "differ" or "inconclusive".
+  const char* verdict() const;
+  // One line: verdict, fraction failing, relMSE, per-channel mean ratios and their z-scores, and
+  // the smallest detectable difference of the image means.
   std::string summary() const;
 };
 

@@ -101,10 +101,16 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   generate_ = std::make_unique<ComputePipeline>(ctx, "generate", layout, spec);
   prepare_ = std::make_unique<ComputePipeline>(ctx, "prepare", layout, spec);
   intersect_ = std::make_unique<ComputePipeline>(ctx, "intersect", layout, spec);
-  // Without float atomics (or when asked) the statistics go through compare-and-swap loops.
+  // Chosen by the device, not the method: the float-atomic variants only where statistics are
+  // gathered and the context enabled VK_EXT_shader_atomic_float. The plain modules declare no
+  // optional capability (the methods without statistics need none); they add the statistics with
+  // compare-and-swap loops.
   casAtomics_ = useCms && !(s.floatAtomics && ctx.floatAtomics());
-  shade_ = std::make_unique<ComputePipeline>(ctx, casAtomics_ ? "shade_cas" : "shade", layout, spec, "shade");
-  shadow_ = std::make_unique<ComputePipeline>(ctx, casAtomics_ ? "shadow_cas" : "shadow", layout, spec, "shadow");
+  const bool floatAtomicVariants = useCms && !casAtomics_;
+  shade_ = std::make_unique<ComputePipeline>(ctx, floatAtomicVariants ? "shade_float_atomics" : "shade", layout, spec,
+                                             "shade");
+  shadow_ = std::make_unique<ComputePipeline>(ctx, floatAtomicVariants ? "shadow_float_atomics" : "shadow", layout,
+                                              spec, "shadow");
   accumulate_ = std::make_unique<ComputePipeline>(ctx, "accumulate", layout, spec);
 
   ctx.submitAndWait([&](VkCommandBuffer cmd) {

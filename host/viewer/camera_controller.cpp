@@ -45,10 +45,11 @@ void CameraController::orbit(float dx, float dy) {
   ++version_;
 }
 
-void CameraController::pan(float dx, float dy) {
+void CameraController::pan(float dx, float dy, float imageHeightPixels) {
   const shared::CameraGpu c = camera();
-  // One pixel moves the pivot by about one pixel's footprint at the pivot's distance.
-  const float perPixel = 2.0f * distance_ * c.tanHalfFovY / float(std::max(c.height, 1u));
+  // The image spans 2 distance tan(fov/2) vertically at the pivot's depth: one window pixel is
+  // that over the image's height in window pixels (not the film's: the window shows it scaled).
+  const float perPixel = 2.0f * distance_ * c.tanHalfFovY / std::max(imageHeightPixels, 1.0f);
   position_ += (-dx * c.right + dy * c.up) * perPixel;
   ++version_;
 }

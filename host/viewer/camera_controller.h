@@ -16,7 +16,10 @@ class CameraController {
   CameraController(const shared::CameraGpu& initial, const glm::vec3& sceneCentre, float sceneSize);
 
   void orbit(float dxPixels, float dyPixels);     // mouse drag with the left button
-  void pan(float dxPixels, float dyPixels);       // right or middle button
+  // Right or middle button. `imageHeightPixels`: the height the image covers in the window, in
+  // the units of dx, dy (the film is letterboxed: shared/display.h), so that the point under the
+  // cursor, at the pivot's depth, moves by exactly the mouse's delta.
+  void pan(float dxPixels, float dyPixels, float imageHeightPixels);
   void zoom(float steps);                         // scroll wheel: positive moves closer
   void fly(const glm::vec3& localDirection, float seconds);  // x right, y up, z forward
   void reset();

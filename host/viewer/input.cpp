@@ -1,6 +1,7 @@
 #include "viewer/input.h"
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <sstream>
 
@@ -13,6 +14,17 @@ const std::vector<std::string>& knownKeyNames() {
       "1", "2", "3", "4", "5", "shift+1", "shift+2", "shift+3", "shift+4", "shift+5", "v", "g", "f1", "f2",
       "f3", "f4", "f5", "f6", "p", "r", "w", "a", "s", "d", "q", "e", "escape"};
   return names;
+}
+
+std::string canonicalKeyName(const std::string& written) {
+  std::string name = written;
+  for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (name == "esc") name = "escape";   // as the README, the banner and the key cap write it
+  const auto& keys = knownKeyNames();
+  if (std::find(keys.begin(), keys.end(), name) != keys.end()) return name;
+  std::string valid;
+  for (const std::string& key : keys) valid += (valid.empty() ? "" : " ") + key;
+  throw Error("unknown key '" + written + "' (keys, in any case: " + valid + "; esc for escape)");
 }
 
 glm::vec3 flyDirectionOf(const std::string& key) {
@@ -44,9 +56,12 @@ std::deque<InputEvent> parseInputScript(const std::string& text, const std::stri
       if (!(words >> e.x) || e.x < 1) throw Error(where + "'frames' needs a count >= 1");
     } else if (verb == "key") {
       e.kind = InputEvent::Kind::Key;
-      const auto& keys = knownKeyNames();
-      if (!(words >> e.name) || std::find(keys.begin(), keys.end(), e.name) == keys.end())
-        throw Error(where + "unknown key '" + e.name + "'");
+      if (!(words >> e.name)) throw Error(where + "'key' needs a key name");
+      try {
+        e.name = canonicalKeyName(e.name);
+      } catch (const Error& unknown) {
+        throw Error(where + unknown.what());
+      }
     } else if (verb == "drag") {
       e.kind = InputEvent::Kind::Drag;
       if (!(words >> e.name) || (e.name != "left" && e.name != "right"))

@@ -150,7 +150,12 @@ void Viewer::handle(const InputEvent& e) {
     case Kind::Resize: window_.resize(int(e.x), int(e.y)); break;
     case Kind::Drag:
       if (e.name == "left") camera_->orbit(e.x, e.y);
-      else camera_->pan(e.x, e.y);
+      else {
+        const VkExtent2D w = swapchain_->extent();
+        const float filmHeight = float(options_.height);
+        camera_->pan(e.x, e.y, shared::letterboxScale(w.width, w.height, uint32_t(options_.width), uint32_t(filmHeight)) *
+                                   filmHeight);
+      }
       break;
     case Kind::Key: {
       const std::string& k = e.name;

@@ -2,14 +2,15 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
 #include "util/error.h"
 #include "util/log.h"
 #include "vulkan/check.h"
+#include "vulkan/device_choice.h"
 
 namespace mixtrace {
 namespace {
@@ -37,11 +38,6 @@ bool hasLayer(const char* name) {
   for (auto& l : layers)
     if (std::strcmp(l.layerName, name) == 0) return true;
   return false;
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower((unsigned char)c));
-  return s;
 }
 
 // A queue family with compute and, given a surface, presentation to it.
@@ -80,23 +76,95 @@ bool supportsFloatAtomics(VkPhysicalDevice pd) {
   return af.shaderBufferFloat32AtomicAdd == VK_TRUE;
 }
 
-// The features the shaders rely on; a device without them cannot run mixtrace.
-bool supportsRequiredFeatures(VkPhysicalDevice pd, std::string* missing) {
+std::string versionText(uint32_t v) {
+  return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
+         std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+// Why the device cannot run mixtrace (the features the shaders rely on, and presenting to the
+// viewer's window when there is one); empty when it can.
+std::string unusableReason(VkPhysicalDevice pd, VkSurfaceKHR surface) {
+  VkPhysicalDeviceProperties p;
+  vkGetPhysicalDeviceProperties(pd, &p);
+  if (p.apiVersion < VK_API_VERSION_1_2) return "needs Vulkan 1.2, has " + versionText(p.apiVersion);
+  uint32_t tsBits = 0;
+  if (computeQueueFamily(pd, &tsBits, surface) < 0)
+    return surface ? "no compute queue that presents to the window" : "no compute queue";
   VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
   vkGetPhysicalDeviceFeatures2(pd, &f);
-  if (!f12.scalarBlockLayout) { *missing = "scalarBlockLayout"; return false; }
-  if (!f.features.shaderInt64 || !f12.shaderBufferInt64Atomics) { *missing = "64-bit integer atomics"; return false; }
-  return true;
+  if (!f12.scalarBlockLayout) return "no scalarBlockLayout";
+  if (!f.features.shaderInt64 || !f12.shaderBufferInt64Atomics) return "no 64-bit integer atomics";
+  if (surface && !hasDeviceExtension(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) return "no VK_KHR_swapchain";
+  return "";
+}
+
+DeviceCandidate describeCandidate(VkPhysicalDevice pd, VkSurfaceKHR surface) {
+  VkPhysicalDeviceProperties p;
+  vkGetPhysicalDeviceProperties(pd, &p);
+  return {p.deviceName, p.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, unusableReason(pd, surface)};
+}
+
+const char* typeText(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+    default: return "other";
+  }
+}
+
+// "llvmpipe (Mesa 22.3.6 (LLVM 15.0.6))": VkPhysicalDeviceDriverProperties, core in Vulkan 1.2.
+std::string driverText(VkPhysicalDevice pd, const VkPhysicalDeviceProperties& p) {
+  if (p.apiVersion < VK_API_VERSION_1_2 && !hasDeviceExtension(pd, VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME))
+    return "unknown (driver version " + std::to_string(p.driverVersion) + ")";
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+  vkGetPhysicalDeviceProperties2(pd, &p2);
+  std::string text = driver.driverName;
+  if (driver.driverInfo[0]) text += std::string(" (") + driver.driverInfo + ")";
+  return text;
+}
+
+// MIXTRACE_DISABLE_FLOAT_ATOMICS=1: behave as on a device without VK_EXT_shader_atomic_float (the
+// extension is not enabled), so that path is tested on devices that have it.
+bool floatAtomicsDisabledByEnvironment() {
+  const char* value = std::getenv("MIXTRACE_DISABLE_FLOAT_ATOMICS");
+  return value && std::strcmp(value, "") != 0 && std::strcmp(value, "0") != 0;
+}
+
+VkInstance createInstance(const std::vector<const char*>& layers, const std::vector<const char*>& extensions) {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "mixtrace";
+  app.apiVersion = VK_API_VERSION_1_2;
+  VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  ici.pApplicationInfo = &app;
+  ici.enabledLayerCount = uint32_t(layers.size());
+  ici.ppEnabledLayerNames = layers.data();
+  ici.enabledExtensionCount = uint32_t(extensions.size());
+  ici.ppEnabledExtensionNames = extensions.data();
+  VkInstance instance = VK_NULL_HANDLE;
+  VkResult r = vkCreateInstance(&ici, nullptr, &instance);
+  if (r == VK_ERROR_INCOMPATIBLE_DRIVER || r == VK_ERROR_INITIALIZATION_FAILED)
+    throw Error("no Vulkan driver found (install mesa-vulkan-drivers for the CPU driver lavapipe, or a GPU driver)");
+  vkCheck(r, "vkCreateInstance");
+  return instance;
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+  uint32_t count = 0;
+  VkResult r = vkEnumeratePhysicalDevices(instance, &count, nullptr);
+  if (r != VK_SUCCESS || count == 0)
+    throw Error("no Vulkan device found (install mesa-vulkan-drivers for the CPU driver lavapipe, or a GPU driver)");
+  std::vector<VkPhysicalDevice> devices(count);
+  vkEnumeratePhysicalDevices(instance, &count, devices.data());
+  return devices;
 }
 
 }  // namespace
 
 VulkanContext::VulkanContext(const ContextOptions& options) {
-  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-  app.pApplicationName = "mixtrace";
-  app.apiVersion = VK_API_VERSION_1_2;
-
   std::vector<const char*> layers, extensions;
   if (options.validation) {
     if (hasLayer("VK_LAYER_KHRONOS_validation")) {
@@ -107,16 +175,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
     }
   }
   for (const std::string& e : options.instanceExtensions) extensions.push_back(e.c_str());
-  VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
-  ici.pApplicationInfo = &app;
-  ici.enabledLayerCount = uint32_t(layers.size());
-  ici.ppEnabledLayerNames = layers.data();
-  ici.enabledExtensionCount = uint32_t(extensions.size());
-  ici.ppEnabledExtensionNames = extensions.data();
-  VkResult r = vkCreateInstance(&ici, nullptr, &instance_);
-  if (r == VK_ERROR_INCOMPATIBLE_DRIVER || r == VK_ERROR_INITIALIZATION_FAILED)
-    throw Error("no Vulkan driver found (install mesa-vulkan-drivers for the CPU driver lavapipe, or a GPU driver)");
-  vkCheck(r, "vkCreateInstance");
+  instance_ = createInstance(layers, extensions);
 
   if (!layers.empty()) {
     VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
@@ -130,38 +189,13 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
 
   if (options.makeSurface) surface_ = options.makeSurface(instance_);
 
-  uint32_t count = 0;
-  r = vkEnumeratePhysicalDevices(instance_, &count, nullptr);
-  if (r != VK_SUCCESS || count == 0)
-    throw Error("no Vulkan device found (install mesa-vulkan-drivers for the CPU driver lavapipe, or a GPU driver)");
-  std::vector<VkPhysicalDevice> devices(count);
-  vkEnumeratePhysicalDevices(instance_, &count, devices.data());
+  const std::vector<VkPhysicalDevice> devices = physicalDevices(instance_);
 
-  // --device: an index or a name substring; otherwise prefer a discrete GPU, then anything.
-  std::string names;
-  int chosen = -1;
-  std::string missing;
-  for (uint32_t i = 0; i < count; ++i) {
-    VkPhysicalDeviceProperties p;
-    vkGetPhysicalDeviceProperties(devices[i], &p);
-    names += (names.empty() ? "" : ", ") + std::to_string(i) + ": " + p.deviceName;
-    uint32_t tsBits = 0;
-    bool usable = p.apiVersion >= VK_API_VERSION_1_2 && computeQueueFamily(devices[i], &tsBits, surface_) >= 0 &&
-                  supportsRequiredFeatures(devices[i], &missing) &&
-                  (!surface_ || hasDeviceExtension(devices[i], VK_KHR_SWAPCHAIN_EXTENSION_NAME));
-    bool matches = options.device.empty() ||
-                   options.device == std::to_string(i) ||
-                   lower(p.deviceName).find(lower(options.device)) != std::string::npos;
-    if (!usable || !matches) continue;
-    if (chosen < 0) chosen = int(i);
-    else if (options.device.empty() && p.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU) chosen = int(i);
-  }
-  if (chosen < 0) {
-    if (!options.device.empty()) throw Error("no usable Vulkan device matches --device " + options.device + " (devices: " + names + ")");
-    throw Error("no Vulkan device supports what mixtrace needs (Vulkan 1.2, compute, scalar block layout, 64-bit atomics" +
-                std::string(surface_ ? ", presenting to the window" : "") + "; devices: " + names + ")");
-  }
-  physical_ = devices[size_t(chosen)];
+  // --device: an index or a name substring (vulkan/device_choice.h); otherwise prefer a discrete GPU.
+  std::vector<DeviceCandidate> candidates;
+  for (VkPhysicalDevice pd : devices) candidates.push_back(describeCandidate(pd, surface_));
+  const size_t chosen = chooseDevice(options.device, candidates);
+  physical_ = devices[chosen];
   vkGetPhysicalDeviceProperties(physical_, &properties_);
   queueFamily_ = uint32_t(computeQueueFamily(physical_, &timestampValidBits_, surface_));
   VkPhysicalDeviceMemoryProperties mem;
@@ -175,7 +209,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   qci.queueCount = 1;
   qci.pQueuePriorities = &priority;
   // Scalar block layout: one struct layout for C++ and GLSL. 64-bit atomics: the CMS cell table.
-  floatAtomics_ = supportsFloatAtomics(physical_);
+  floatAtomics_ = options.floatAtomics && !floatAtomicsDisabledByEnvironment() && supportsFloatAtomics(physical_);
   VkPhysicalDeviceShaderAtomicFloatFeaturesEXT af{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
   af.shaderBufferFloat32AtomicAdd = VK_TRUE;
   VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, floatAtomics_ ? &af : nullptr};
@@ -213,6 +247,28 @@ VulkanContext::~VulkanContext() {
     if (destroy) destroy(instance_, messenger_, nullptr);
   }
   if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+std::string describeVulkanDevices() {
+  const VkInstance instance = createInstance({}, {});
+  std::string text;
+  try {
+    const std::vector<VkPhysicalDevice> devices = physicalDevices(instance);
+    for (size_t i = 0; i < devices.size(); ++i) {
+      VkPhysicalDeviceProperties p;
+      vkGetPhysicalDeviceProperties(devices[i], &p);
+      const std::string why = unusableReason(devices[i], VK_NULL_HANDLE);
+      text += std::to_string(i) + ": " + p.deviceName + "\n   " + typeText(p.deviceType) + ", driver " +
+              driverText(devices[i], p) + ", Vulkan " + versionText(p.apiVersion) + ", " +
+              (why.empty() ? std::string("usable") : "cannot run mixtrace: " + why) +
+              (why.empty() ? (supportsFloatAtomics(devices[i]) ? ", float atomics" : ", no float atomics") : "") + "\n";
+    }
+  } catch (...) {
+    vkDestroyInstance(instance, nullptr);
+    throw;
+  }
+  vkDestroyInstance(instance, nullptr);
+  return text;
 }
 
 uint32_t VulkanContext::validationErrors() const { return gValidationErrors.load(); }

@@ -12,13 +12,21 @@
 namespace mixtrace {
 
 struct ContextOptions {
-  std::string device;       // index or case-insensitive name substring; empty = first suitable
+  std::string device;       // --device: index or name substring (vulkan/device_choice.h)
   bool validation = false;  // enable VK_LAYER_KHRONOS_validation and count its errors
   // Presentation: the instance extensions the window system needs, and what makes the window's
   // surface once the instance exists (the context owns and destroys it).
   std::vector<std::string> instanceExtensions;
   std::function<VkSurfaceKHR(VkInstance)> makeSurface;
+  // false: do not enable VK_EXT_shader_atomic_float even where the device has it, as if it had
+  // not (tests of that path; the environment variable MIXTRACE_DISABLE_FLOAT_ATOMICS=1 does the
+  // same for the binary).
+  bool floatAtomics = true;
 };
+
+// `mixtrace --list-devices`: per device its index, name, then type, driver, Vulkan version and
+// whether mixtrace can run on it (and with float atomics). Needs a Vulkan driver, not a device.
+std::string describeVulkanDevices();
 
 class VulkanContext {
  public:
@@ -39,8 +47,9 @@ class VulkanContext {
   bool timestampsSupported() const { return timestampValidBits_ > 0; }
   uint64_t maxStorageBufferRange() const { return properties_.limits.maxStorageBufferRange; }
   uint64_t deviceLocalBytes() const { return deviceLocalBytes_; }
-  // VK_EXT_shader_atomic_float's shaderBufferFloat32AtomicAdd (enabled when present); without it
-  // the CMS statistics are added with compare-and-swap loops.
+  // VK_EXT_shader_atomic_float's shaderBufferFloat32AtomicAdd, enabled (when present and not
+  // disabled by ContextOptions::floatAtomics); without it the pipelines that gather CMS
+  // statistics add them with compare-and-swap loops, and no pipeline may use the capability.
   bool floatAtomics() const { return floatAtomics_; }
 
   // Validation messages of severity error seen so far (0 when validation is off).

@@ -35,7 +35,7 @@ class ComputePipeline {
  public:
   // specialization: value of constant_id i at index i (as 32-bit words: bools are 0/1).
   // name: what timings call the pass (default: the shader's name; variants of one stage, e.g.
-  // shade and shade_cas, keep the stage's name).
+  // shade and shade_float_atomics, keep the stage's name).
   ComputePipeline(VulkanContext& ctx, const std::string& shader, VkPipelineLayout layout,
                   const std::vector<uint32_t>& specialization, const std::string& name = "");
   ~ComputePipeline();

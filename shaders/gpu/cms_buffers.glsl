@@ -3,7 +3,7 @@
 // and statistics terms are paid at the next vertex, once its hit is known).
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
-#ifndef CMS_CAS_ATOMICS
+#ifdef CMS_FLOAT_ATOMICS
 #extension GL_EXT_shader_atomic_float : require
 #endif
 

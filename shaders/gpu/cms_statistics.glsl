@@ -25,9 +25,10 @@ float sampleWeight(vec3 beta, uint path, uint cell) {
   return CMS_RELATIVE_WEIGHT ? relativeSampleWeight(beta, pixelEstimate[pc.pixelOffset + path]) : 1.0;
 }
 
-#ifdef CMS_CAS_ATOMICS
-// Without float atomics: a compare-and-swap loop on the bits, through a uint view of the same
-// buffer (the variants shade_cas and shadow_cas; --float-atomics off).
+#ifndef CMS_FLOAT_ATOMICS
+// Without float atomics (the plain shade and shadow modules: devices without
+// VK_EXT_shader_atomic_float, --float-atomics off, and the methods that gather no statistics): a
+// compare-and-swap loop on the bits, through a uint view of the same buffer.
 layout(scalar, binding = BINDING_CELL_STATS) buffer CellStatsBits { uint cellStatsBits[]; };
 
 void addStat(uint cell, uint index, float value) {
@@ -40,7 +41,7 @@ void addStat(uint cell, uint index, float value) {
     if (seen == expected) break;
   }
 }
-#else
+#else   // the variants shade_float_atomics and shadow_float_atomics
 void addStat(uint cell, uint index, float value) {
   if (value != 0.0) atomicAdd(cellStats[cell * cellStatsStride(pc.clusterCount) + index], value);
 }

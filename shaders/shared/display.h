@@ -30,6 +30,13 @@ struct DisplayConstants {
   uint redFirst;      // 1: the swapchain is R8G8B8A8, else B8G8R8A8
 };
 
+// Window pixels per film pixel: the film is letterboxed into the window, as large as fits. The
+// display pass maps window pixels to film pixels with it, and the viewer's pan uses it so that the
+// picture follows the mouse (host/viewer/camera_controller.h).
+SHARED_FN float letterboxScale(uint windowWidth, uint windowHeight, uint filmWidth, uint filmHeight) {
+  return min(float(windowWidth) / float(filmWidth), float(windowHeight) / float(filmHeight));
+}
+
 // IEC 61966-2-1 sRGB encoding: linear segment below 0.0031308, power 1/2.4 above. The PNG
 // previews and the viewer encode with it.
 SHARED_FN float srgbEncode(float linear) {

@@ -52,7 +52,7 @@ void main() {
   uint x = pc.xBegin + gl_GlobalInvocationID.x;
   uint y = gl_GlobalInvocationID.y;
   if (x >= pc.xEnd || y >= pc.windowHeight) return;
-  float scale = min(float(pc.windowWidth) / float(pc.filmWidth), float(pc.windowHeight) / float(pc.filmHeight));
+  float scale = letterboxScale(pc.windowWidth, pc.windowHeight, pc.filmWidth, pc.filmHeight);
   vec2 offset = 0.5 * (vec2(pc.windowWidth, pc.windowHeight) - scale * vec2(pc.filmWidth, pc.filmHeight));
   vec2 f = (vec2(x, y) + 0.5 - offset) / scale;
   vec3 colour = vec3(0.05);   // letterbox

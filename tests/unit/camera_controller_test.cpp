@@ -64,9 +64,31 @@ TEST(CameraController, PanMovesCameraAndPivotTogether) {
   CameraController cam(sceneCamera(), glm::vec3(0.0f), 4.0f);
   const glm::vec3 offset = cam.pivot() - cam.position();
   const glm::vec3 right = cam.camera().right;
-  cam.pan(-50.0f, 0.0f);   // dragging left moves the view right
+  cam.pan(-50.0f, 0.0f, 240.0f);   // dragging left moves the view right
   expectNear(cam.pivot() - cam.position(), offset);
   EXPECT_GT(glm::dot(cam.position() - sceneCamera().position, right), 0.0f);
+}
+
+// Where `point` appears, in pixels of an image `imageHeight` tall (x right, y down from the centre).
+glm::vec2 projected(const shared::CameraGpu& c, const glm::vec3& point, float imageHeight) {
+  const glm::vec3 d = point - c.position;
+  const float depth = glm::dot(d, c.forward);
+  const float ndcX = glm::dot(d, c.right) / depth / (c.tanHalfFovY * c.aspect);
+  const float ndcY = glm::dot(d, c.up) / depth / c.tanHalfFovY;
+  return {0.5f * ndcX * imageHeight * c.aspect, -0.5f * ndcY * imageHeight};
+}
+
+// A 320x240 film shown in a 1280x960 window (the viewer scales small films up): a 30 x -20 pixel
+// drag must move the picture 30 x -20 window pixels, not 4x that (the film's pixels).
+TEST(CameraController, PanMovesThePointUnderTheCursorWithTheMouse) {
+  CameraController cam(sceneCamera(), glm::vec3(0.0f), 4.0f);
+  const float imageHeight = 960.0f;
+  const glm::vec3 grabbed = cam.pivot();
+  const glm::vec2 before = projected(cam.camera(), grabbed, imageHeight);
+  cam.pan(30.0f, -20.0f, imageHeight);
+  const glm::vec2 moved = projected(cam.camera(), grabbed, imageHeight) - before;
+  EXPECT_NEAR(moved.x, 30.0f, 0.05f);
+  EXPECT_NEAR(moved.y, -20.0f, 0.05f);
 }
 
 TEST(CameraController, ZoomApproachesThePivotAndFlyFollowsTheAxes) {

@@ -296,6 +296,27 @@ TEST_F(RenderedImages, CliInputErrorsExitWithTwo) {
   expectError(runCompare(textured(1).path + " " + plain.string()), "--variance");
 }
 
+// The case: two 16-spp renders of a hard scene (Veach MIS, relMSE ~4-7) "agreed", though
+// the image means were only known to ~20 %: the verdict is "inconclusive", exit status 3.
+TEST_F(RenderedImages, TooLittlePowerIsInconclusive) {
+  const std::string args = "--width 48 --height 36 --spp 16 --seed ";
+  const Render a = render(sceneFile("veach_mis.gltf"), args + "1", dir() / "veach1.exr");
+  const Render b = render(sceneFile("veach_mis.gltf"), args + "2", dir() / "veach2.exr");
+  const ComparisonResult r = compareImages(a.mean, a.variance, b.mean, b.variance);
+  EXPECT_TRUE(r.agree) << "no significant difference: " << r.summary();
+  EXPECT_TRUE(r.inconclusive) << r.summary();
+  EXPECT_GT(r.minDetectableDifference, kInconclusiveDifference);
+  const CliResult cli = runCompare(a.path + " " + b.path);
+  EXPECT_EQ(cli.exitCode, 3) << cli.out << cli.err;
+  EXPECT_EQ(cli.out.rfind("inconclusive: ", 0), 0u) << cli.out;
+  EXPECT_EQ(lineCount(cli.out), 1u) << cli.out;
+  // The renders that agree above are powerful enough for a verdict.
+  const ComparisonResult strong =
+      compareImages(textured(1).mean, textured(1).variance, textured(2).mean, textured(2).variance);
+  EXPECT_FALSE(strong.inconclusive) << strong.summary();
+  EXPECT_STREQ(strong.verdict(), "agree");
+}
+
 // --- Synthetic images: Gaussian pixel estimates with known mean and variance of the mean.
 
 constexpr int kW = 64, kH = 48;
@@ -343,6 +364,76 @@ TEST(CompareImagesSynthetic, SameMeanAgreesAtTheNominalRate) {
   EXPECT_LE(disagreements, 2);
   // Sanity of the generator: 1% of pixel z-scores beyond the two-sided 99% quantile.
   EXPECT_NEAR(double(beyond99) / tested, 0.01, 0.002);
+}
+
+Image noisier(const Image& variance, double sdFactor) { return scaled(variance, sdFactor * sdFactor); }
+
+// minDetectable is the difference the image-mean test finds with 80 % probability: the formula
+// by hand, and the detection rate when one channel's mean really differs by that much.
+TEST(CompareImagesSynthetic, MinDetectableDifferenceHasTheStatedPower) {
+  Image mu, var;
+  groundTruth(mu, var);
+  var = noisier(var, 20.0);   // ~250 % per-pixel noise: the image means known to a few %
+  const ComparisonResult first = compareImages(draw(mu, var, 1), var, draw(mu, var, 2), var);
+  int channel = 0;
+  for (int c = 0; c < 3; ++c) {
+    double sumB = 0.0, sumVar = 0.0;
+    for (size_t p = 0; p < mu.pixelCount(); ++p) sumVar += 2.0 * var.rgb[3 * p + c];
+    const Image b = draw(mu, var, 2);
+    for (size_t p = 0; p < mu.pixelCount(); ++p) sumB += b.rgb[3 * p + c];
+    const double z80 = normalUpperQuantile(0.2);
+    EXPECT_NEAR(first.minDetectable[c], (first.meanZThreshold + z80) * std::sqrt(sumVar) / std::abs(sumB),
+                1e-6 * first.minDetectable[c]);
+    if (first.minDetectable[c] > first.minDetectable[channel]) channel = c;
+  }
+  EXPECT_DOUBLE_EQ(first.minDetectableDifference, first.minDetectable[channel]);
+  const double delta = first.minDetectable[channel];
+  Image shifted = mu;
+  for (size_t p = 0; p < mu.pixelCount(); ++p) shifted.rgb[3 * p + channel] *= float(1.0 + delta);
+  int detected = 0;
+  const int trials = 400;
+  for (int t = 0; t < trials; ++t)
+    detected += !compareImages(draw(shifted, var, 1000 + 2 * t), var, draw(mu, var, 1001 + 2 * t), var).meanTestPassed;
+  // Binomial(400, 0.8): sd 0.02; +-0.07 is 3.5 sd.
+  EXPECT_NEAR(double(detected) / trials, kDetectionPower, 0.07) << "delta " << delta;
+}
+
+// Same means, per-pixel noise so large that a 10 % difference of the image means would usually
+// be missed: not "agree" but "inconclusive" (and the CLI's exit status 3); at the usual noise the
+// same images are conclusive; a large difference is "differ" whatever the power.
+TEST(CompareImagesSynthetic, LowPowerIsInconclusiveAndDifferIsNot) {
+  Image mu, var;
+  groundTruth(mu, var);
+  const ComparisonResult usual = compareImages(draw(mu, var, 11), var, draw(mu, var, 12), var);
+  EXPECT_STREQ(usual.verdict(), "agree") << usual.summary();
+  EXPECT_LT(usual.minDetectableDifference, 0.02);
+
+  const Image noisy = noisier(var, 20.0);
+  const Image a = draw(mu, noisy, 13), b = draw(mu, noisy, 14);
+  const ComparisonResult weak = compareImages(a, noisy, b, noisy);
+  EXPECT_TRUE(weak.agree) << weak.summary();
+  EXPECT_TRUE(weak.inconclusive) << weak.summary();
+  EXPECT_STREQ(weak.verdict(), "inconclusive");
+  EXPECT_GT(weak.minDetectableDifference, kInconclusiveDifference);
+  EXPECT_EQ(weak.summary().rfind("inconclusive: ", 0), 0u) << weak.summary();
+
+  const ComparisonResult large = compareImages(draw(scaled(mu, 3.0), noisy, 15), noisy, b, noisy);
+  EXPECT_FALSE(large.agree) << large.summary();
+  EXPECT_FALSE(large.inconclusive);
+  EXPECT_STREQ(large.verdict(), "differ");
+
+  const fs::path dir = scratchDir("compare-inconclusive");
+  writeExr((dir / "a.exr").string(), a, ExrMetadata{}, &noisy);
+  writeExr((dir / "b.exr").string(), b, ExrMetadata{}, &noisy);
+  const fs::path json = dir / "r.json";
+  const CliResult cli = runCompare((dir / "a.exr").string() + " " + (dir / "b.exr").string() + " --json " + json.string());
+  EXPECT_EQ(cli.exitCode, 3) << cli.out << cli.err;
+  EXPECT_EQ(cli.out, weak.summary() + "\n");
+  nlohmann::json j;
+  std::ifstream(json) >> j;
+  EXPECT_EQ(j["verdict"].get<std::string>(), "inconclusive");
+  EXPECT_TRUE(j["inconclusive"].get<bool>());
+  EXPECT_DOUBLE_EQ(j["min_detectable_difference"].get<double>(), weak.minDetectableDifference);
 }
 
 TEST(CompareImagesSynthetic, ShiftedMeanDiffers) {

@@ -49,5 +49,30 @@ TEST(ViewerInput, BadLinesNameFileAndLine) {
   EXPECT_THROW(loadInputScript("/nonexistent/script.txt"), Error);
 }
 
+// The README and the banner write V, F1, Esc: a script may too.
+TEST(ViewerInput, KeyNamesIgnoreCaseAndEscIsEscape) {
+  const auto events = parseInputScript("key V\nkey F1\nkey Esc\nkey ESCAPE\nkey Shift+2\nkey w\n", "s.txt");
+  ASSERT_EQ(events.size(), 6u);
+  EXPECT_EQ(events[0].name, "v");
+  EXPECT_EQ(events[1].name, "f1");
+  EXPECT_EQ(events[2].name, "escape");
+  EXPECT_EQ(events[3].name, "escape");
+  EXPECT_EQ(events[4].name, "shift+2");
+  EXPECT_EQ(events[5].name, "w");
+}
+
+TEST(ViewerInput, AnUnknownKeyListsTheValidNames) {
+  std::string message;
+  try {
+    parseInputScript("key F9\n", "s.txt");
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("s.txt:1: unknown key 'F9'"), std::string::npos) << message;
+  for (const std::string& key : knownKeyNames()) EXPECT_NE(message.find(key), std::string::npos) << key;
+  EXPECT_NE(message.find("esc"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace mixtrace

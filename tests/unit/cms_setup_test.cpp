@@ -1,0 +1,45 @@
+// What cms says when it runs as plain MIS: true for the scene at hand (a scene without lights is
+// not "lights that form one cluster").
+#include "cms/cms_setup.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+#include "support/run_binary.h"
+
+namespace mixtrace {
+namespace {
+
+TEST(CmsSetup, PlainMisNoteSaysNoLightsForASceneWithout) {
+  CmsScene none;
+  EXPECT_NE(plainMisNote(none).find("no lights"), std::string::npos) << plainMisNote(none);
+  EXPECT_EQ(plainMisNote(none).find("one cluster"), std::string::npos) << plainMisNote(none);
+  CmsScene one;
+  one.clusters.lightCluster = {0u};
+  one.clusters.clusters.resize(1);
+  EXPECT_NE(plainMisNote(one).find("one cluster"), std::string::npos) << plainMisNote(one);
+}
+
+// The Cornell box with its light switched off, rendered with cms.
+TEST(CmsSetup, RenderOfASceneWithoutLightsSaysSo) {
+  std::ifstream in(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/cornell_box.gltf");
+  nlohmann::json gltf = nlohmann::json::parse(in);
+  for (auto& material : gltf["materials"]) {
+    material.erase("emissiveFactor");
+    material.erase("extensions");
+  }
+  gltf.erase("extensionsUsed");
+  const auto dir = testing::scratchDir("cms-no-lights");
+  testing::writeFile(dir / "dark.gltf", gltf.dump());
+  const testing::RunResult r = testing::runMixtrace("render " + (dir / "dark.gltf").string() +
+                                                    " --method cms --spp 1 --width 8 --height 8 --no-png --out " +
+                                                    (dir / "dark.exr").string());
+  EXPECT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_NE(r.stderrText.find("cms: the scene has no lights"), std::string::npos) << r.stderrText;
+  EXPECT_EQ(r.stderrText.find("one cluster"), std::string::npos) << r.stderrText;
+}
+
+}  // namespace
+}  // namespace mixtrace
