@@ -47,7 +47,7 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
     BsdfParams bsdf = surfaceBsdf(sh);
     OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
     vec3 wo = toLocal(frame, -direction);
-    vec3 next = offsetRayOrigin(sh.position, sh.geometricNormal);
+    vec3 next = offsetRayOrigin(sh.position, hitPointError(hit.triangle, hit.u, hit.v), sh.geometricNormal);
 
     float uLight = rngNextFloat(rng);
     float uEmitter = rngNextFloat(rng);

@@ -44,7 +44,6 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   if (s.cms.clusters && !cms) throw Error("internal: a CMS method without light clusters");
   setUpTraining(s);
   scene_.bindTo(set_);
-  sceneScale_ = scene.scene.bounds.magnitude();
   // CMS buffers (placeholders of one element for the other methods, so every binding is valid).
   const bool useCms = s.cms.clusters && cms && !cms->clusters.clusters.empty();
   clusterCount_ = useCms ? uint32_t(cms->clusters.clusters.size()) : 1;
@@ -164,7 +163,6 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   pc.cellTableSize = cellTableSize_;
   pc.gridOrigin = gridOrigin_;
   pc.gridInvCellSize = gridInvCellSize_;
-  pc.sceneScale = sceneScale_;
   pc.gatherStatistics = gathering ? 1u : 0u;
 
   dispatch(cmd, *generate_, pc, groupsFor(paths));

@@ -85,7 +85,6 @@ class WavefrontRenderer : public Renderer {
   Buffer rayOrigin_, rayDirection_, throughput_, radiance_, rng_, misPdf_, hits_, rayQueue_, shadowQueue_, queueState_, film_;
   // Controlled mixture sampling: cell table, statistics, solution, clusters, per-path state of the
   // previous vertex's BSDF sample. One-element placeholders when the method does not use them.
-  float sceneScale_ = 1.0f;   // Bounds::magnitude(), for ray offsets
   bool casAtomics_ = false;   // CMS statistics through compare-and-swap loops (shade_cas, shadow_cas)
   uint32_t clusterCount_ = 0, cellTableSize_ = 1;
   glm::vec3 gridOrigin_{0.0f};

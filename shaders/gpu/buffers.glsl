@@ -60,8 +60,3 @@ layout(scalar, binding = BINDING_CLUSTER_DEFAULTS) readonly buffer ClusterDefaul
 #define TEXEL(i) texels[i]
 #define LIGHT(i) lights[i]
 #define EMITTER(i) emitters[i]
-// The scene's coordinate magnitude for ray offsets; a pass with other push constants that never
-// offsets rays defines its own before including this file.
-#ifndef SCENE_SCALE
-#define SCENE_SCALE() pc.sceneScale
-#endif

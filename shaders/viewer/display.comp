@@ -5,7 +5,6 @@
 // packed as 8-bit sRGB into the display buffer the host copies to the swapchain image.
 #include "shared/display.h"
 #define PUSH_CONSTANT_TYPE DisplayConstants
-#define SCENE_SCALE() 1.0   // the display offsets no rays (gpu/buffers.glsl)
 #include "gpu/buffers.glsl"
 #include "gpu/cms_buffers.glsl"
 #include "shared/cms_sampling.h"
