@@ -3,6 +3,7 @@
 // ray of the room 1.5 units off its surface and darkened the image by 35 % (1e6: 24 %), in
 // silence. Offsets now come from each hit point's own error bound (shared/ray_offset.h).
 #include <cmath>
+#include <ostream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -35,6 +36,8 @@ struct FarCase {
   const char* backend;
   double far;
 };
+
+void PrintTo(const FarCase& c, std::ostream* os) { *os << c.backend << " x = " << c.far; }
 
 class FarGeometry : public ::testing::TestWithParam<FarCase> {};
 
