@@ -264,19 +264,19 @@ void WavefrontRenderer::recordClearFilm(VkCommandBuffer cmd) {
   computeBarrier(cmd);
 }
 
-Image WavefrontRenderer::readImage(Image* variance) const {
+Image WavefrontRenderer::readImage(Image* standardError) const {
   std::vector<glm::vec3> film(size_t(pixelCount_) * 2);
   film_.download(film.data(), film.size() * sizeof(glm::vec3));
   Image mean;
   mean.width = int(settings_.width);
   mean.height = int(settings_.height);
   mean.rgb.assign(size_t(pixelCount_) * 3, 0.0f);
-  if (variance) *variance = mean;
+  if (standardError) *standardError = mean;
   if (spp_ == 0) return mean;
   for (size_t p = 0; p < pixelCount_; ++p)
     for (int c = 0; c < 3; ++c) {
       mean.rgb[3 * p + c] = film[2 * p][c];
-      if (variance) variance->rgb[3 * p + c] = shared::varianceOfMean(film[2 * p + 1][c], float(spp_));
+      if (standardError) standardError->rgb[3 * p + c] = shared::standardErrorOfMean(film[2 * p + 1][c], float(spp_));
     }
   return mean;
 }

@@ -42,7 +42,7 @@ layout(scalar, binding = BINDING_RAY_QUEUE) buffer RayQueueBuf { uint rayQueue[]
 layout(scalar, binding = BINDING_SHADOW_QUEUE) buffer ShadowQueueBuf { ShadowRay shadowQueue[]; };
 layout(scalar, binding = BINDING_QUEUE_STATE) buffer QueueStateBuf { QueueState queues; };
 
-layout(scalar, binding = BINDING_FILM) buffer FilmBuf { vec3 film[]; };  // [2 * pixel] mean, [2 * pixel + 1] sum of squared deviations
+layout(scalar, binding = BINDING_FILM) buffer FilmBuf { vec3 film[]; };  // [2 * pixel] mean, [2 * pixel + 1] sqrt of the sum of squared deviations (shared/film.h)
 
 // Controlled mixture sampling: per-cell statistics and solutions, flat arrays indexed by the
 // functions of shared/cms_layouts.h.

@@ -40,8 +40,8 @@ vec3 viewColour(uint pixel) {
   if (pc.view == kViewImage) return encode(mean);
   if (pc.view == kViewVariance) {
     // Relative standard deviation of the mean, log scale from 0.1 % to 100 %.
-    float variance = varianceOfMean(luminance(film[2u * pixel + 1u]), float(pc.spp));
-    float relative = sqrt(variance) / (luminance(mean) + 1e-3);
+    float standardError = standardErrorOfMean(luminance(film[2u * pixel + 1u]), float(pc.spp));
+    float relative = standardError / (luminance(mean) + 1e-3);
     return heatColour((log(max(relative, 1e-3)) / log(10.0) + 3.0) / 3.0);
   }
   return cellView(pixel);
