@@ -17,12 +17,18 @@ namespace mixtrace::testing {
 // room), which 40x30 at 64 spp shows at many sigma, and they run on 2 cores.
 inline const char* const kAgreementImage = "--width 40 --height 30 --spp 64";
 
+// Where renderScene(dir, name, ..., backend, ...) writes its image.
+inline std::filesystem::path agreementImagePath(const std::string& dir, const std::string& name,
+                                                const std::string& backend) {
+  return scratchDir(dir) / (name + "-" + backend + ".exr");
+}
+
 // Writes `gltf` as `name`.gltf in the scratch directory `dir` and renders it on `backend` with
 // `seed`; fails the calling test (fatally) when the binary fails or writes no variance.
 inline void renderScene(const std::string& dir, const std::string& name, const std::string& gltf,
                         const std::string& backend, int seed, RenderWithStats& out) {
   const std::filesystem::path d = scratchDir(dir);
-  const std::filesystem::path scene = d / (name + ".gltf"), image = d / (name + "-" + backend + ".exr");
+  const std::filesystem::path scene = d / (name + ".gltf"), image = agreementImagePath(dir, name, backend);
   writeFile(scene, gltf);
   out = renderWithStats(scene.string() + " " + kAgreementImage + " --method pt-uniform --backend " + backend +
                             " --seed " + std::to_string(seed),
