@@ -25,11 +25,11 @@
 #include "shared/layouts.h"
 SHARED_BEGIN_WITH_BUFFERS
 
-const float kSurfacePointErrorUlps = 16.0f * 5.9604645e-8f;   // 16 * 2^-24 (unit roundoff)
+const float kSurfacePointRelativeError = 16.0f * 5.9604645e-8f;   // 16 * 2^-24 (unit roundoff)
 
 // Per-component bound on the rounding error of g.v0 + u g.e1 + v g.e2 evaluated in float.
 SHARED_FN vec3 trianglePointError(TriangleGeom g, float u, float v) {
-  return kSurfacePointErrorUlps * (abs(g.v0) + abs(u * g.e1) + abs(v * g.e2));
+  return kSurfacePointRelativeError * (abs(g.v0) + abs(u * g.e1) + abs(v * g.e2));
 }
 
 // The same for the hit (u, v) on triangle `tri` (BVH order, as HitRecord.triangle).
