@@ -121,9 +121,9 @@ double relativeMse(const Image& image, const Image& reference) {
   return total / double(kept);
 }
 
-ComparisonResult compareImages(const Image& a, const Image& varA, const Image& b, const Image& varB, double alpha,
+ComparisonResult compareImages(const Image& a, const Image& seA, const Image& b, const Image& seB, double alpha,
                                double maxFailFraction) {
-  checkInputs(a, varA, b, varB);
+  checkInputs(a, seA, b, seB);
   if (!(alpha > 0.0 && alpha < 1.0)) throw Error("significance alpha must be in (0, 1)");
   if (maxFailFraction > 1.0) throw Error("the tolerated fail fraction must be in [0, 1]");
 
@@ -142,10 +142,12 @@ ComparisonResult compareImages(const Image& a, const Image& varA, const Image& b
 
   double sumA[3] = {0, 0, 0}, sumB[3] = {0, 0, 0}, sumVar[3] = {0, 0, 0};
   for (size_t i = 0; i < r.channels; ++i) {
-    const double x = a.rgb[i], y = b.rgb[i], vx = varA.rgb[i], vy = varB.rgb[i];
+    // The inputs are standard errors (exr_io.h); squared in double, which holds the square of
+    // any float, so images of 1e20 or 1e-30 are compared as well as images of 1.
+    const double x = a.rgb[i], y = b.rgb[i], sx = seA.rgb[i], sy = seB.rgb[i], vx = sx * sx, vy = sy * sy;
     const int c = static_cast<int>(i % 3);
-    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(vx) || !std::isfinite(vy) || vx < 0.0 ||
-        vy < 0.0) {
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(sx) || !std::isfinite(sy) || sx < 0.0 ||
+        sy < 0.0) {
       ++r.nonFinite;
       ++r.failed;
       continue;  // kept out of the image means, which it would otherwise poison

@@ -1,6 +1,6 @@
 #pragma once
 // Statistical comparison of two Monte Carlo renders of the same scene: do they estimate the same
-// image, given each pixel's variance of the mean (what `render --variance` writes)?
+// image, given each pixel's standard error of the mean (what `render --variance` writes)?
 //
 // The rule (all of it is in compareImages):
 //
@@ -95,10 +95,11 @@ struct ComparisonResult {
   std::string summary() const;
 };
 
-// `varA`, `varB` hold the variance of each pixel's mean. All four images must have the same size;
+// `seA`, `seB` hold the standard error of each pixel's mean (what readExr returns; the formulas
+// above use its square, the variance of the mean, formed in double). All four images must have the same size;
 // throws mixtrace::Error (one line) otherwise, or when a variance image is empty ("render with
 // --variance"). `alpha` must be in (0, 1); `maxFailFraction` < 0 selects the default allowance.
-ComparisonResult compareImages(const Image& a, const Image& varA, const Image& b, const Image& varB,
+ComparisonResult compareImages(const Image& a, const Image& seA, const Image& b, const Image& seB,
                                double alpha = 0.01, double maxFailFraction = -1.0);
 
 // Loads two EXR files written by `render --variance` and compares them. Throws mixtrace::Error

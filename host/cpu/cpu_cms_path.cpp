@@ -73,7 +73,7 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
     BsdfParams bsdf = surfaceBsdf(sh);
     OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
     vec3 wo = toLocal(frame, -direction);
-    vec3 next = offsetRayOrigin(sh.position, sh.geometricNormal);
+    vec3 next = offsetRayOrigin(sh.position, hitPointError(hit.triangle, hit.u, hit.v), sh.geometricNormal);
 
     uint cell = cells.findCell(sh.position, sh.geometricNormal, sh.material);
     if (cell != kNoCell && cells.gathering(cell)) cells.countVertex(cell);

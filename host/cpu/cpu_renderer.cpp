@@ -47,7 +47,7 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
     BsdfParams bsdf = surfaceBsdf(sh);
     OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
     vec3 wo = toLocal(frame, -direction);
-    vec3 next = offsetRayOrigin(sh.position, sh.geometricNormal);
+    vec3 next = offsetRayOrigin(sh.position, hitPointError(hit.triangle, hit.u, hit.v), sh.geometricNormal);
 
     float uLight = rngNextFloat(rng);
     float uEmitter = rngNextFloat(rng);
@@ -198,14 +198,16 @@ void CpuRenderer::renderPass(uint32_t count) {
   for (auto& t : pool) t.join();
 }
 
-Image CpuRenderer::readImage(Image* variance) const {
+Image CpuRenderer::readImage(Image* standardError) const {
   Image mean(int(settings_.width), int(settings_.height));
-  if (variance) *variance = Image(int(settings_.width), int(settings_.height));
+  if (standardError) *standardError = Image(int(settings_.width), int(settings_.height));
   const double n = spp_;
+  // M2 in double holds the square of any float image; its square root is back in float range.
   for (size_t p = 0; p < film_.size(); ++p)
     for (int c = 0; c < 3; ++c) {
       mean.rgb[3 * p + c] = float(film_[p].mean[c]);
-      if (variance && spp_ > 1) variance->rgb[3 * p + c] = float(film_[p].m2[c] / (n * (n - 1.0)));
+      if (standardError && spp_ > 1)
+        standardError->rgb[3 * p + c] = float(std::sqrt(film_[p].m2[c] / (n * (n - 1.0))));
     }
   return mean;
 }

@@ -28,7 +28,7 @@ class CpuRenderer : public Renderer {
 
   void renderSamples(uint32_t count) override;
   uint32_t samplesPerPixel() const override { return spp_; }
-  Image readImage(Image* variance = nullptr) const override;
+  Image readImage(Image* standardError = nullptr) const override;
   RenderCounters counters() const override;
   std::map<std::string, double> passTimesMs() const override { return {}; }
   std::string deviceName() const override;

@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
+#include <cmath>
 #include <exception>
 #include <set>
 
@@ -25,7 +26,18 @@ namespace mixtrace {
 namespace {
 
 const char* const kColorChannels[3] = {"R", "G", "B"};
-const char* const kVarianceChannels[3] = {"variance.R", "variance.G", "variance.B"};
+// The uncertainty of each pixel is stored as the standard error of its mean: a variance (its
+// square) overflows float where the image exceeds ~1e19 and underflows below ~1e-19
+// (shared/film.h). Files of earlier versions hold the variance of the mean instead; readExr
+// converts those.
+const char* const kStandardErrorChannels[3] = {"standardError.R", "standardError.G", "standardError.B"};
+const char* const kLegacyVarianceChannels[3] = {"variance.R", "variance.G", "variance.B"};
+
+int channelsPresent(const Imf::ChannelList& channels, const char* const names[3]) {
+  int present = 0;
+  for (int c = 0; c < 3; ++c) present += channels.findChannel(names[c]) != nullptr;
+  return present;
+}
 
 // Attributes OpenEXR itself manages; they describe the file, not the render, so readExr leaves
 // them out of ExrMetadata and writeExr refuses to overwrite them.
@@ -64,13 +76,14 @@ void addSlices(Imf::FrameBuffer& frameBuffer, const char* const names[3], Image&
 
 }  // namespace
 
-void writeExr(const std::string& path, const Image& image, const ExrMetadata& meta, const Image* variance) {
+void writeExr(const std::string& path, const Image& image, const ExrMetadata& meta, const Image* standardError) {
   checkImageSize(image, "image");
-  if (variance) {
-    checkImageSize(*variance, "variance image");
-    if (variance->width != image.width || variance->height != image.height)
-      throw Error("variance image is " + std::to_string(variance->width) + "x" + std::to_string(variance->height) +
-                  " but the image is " + std::to_string(image.width) + "x" + std::to_string(image.height));
+  if (standardError) {
+    checkImageSize(*standardError, "variance (standard error) image");
+    if (standardError->width != image.width || standardError->height != image.height)
+      throw Error("variance (standard error) image is " + std::to_string(standardError->width) + "x" +
+                  std::to_string(standardError->height) + " but the image is " + std::to_string(image.width) + "x" +
+                  std::to_string(image.height));
   }
 
   Imf::Header header(image.width, image.height);
@@ -96,9 +109,9 @@ void writeExr(const std::string& path, const Image& image, const ExrMetadata& me
   Imf::FrameBuffer frameBuffer;
   for (const char* name : kColorChannels) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
   addSlices(frameBuffer, kColorChannels, const_cast<Image&>(image), 0, 0);
-  if (variance) {
-    for (const char* name : kVarianceChannels) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-    addSlices(frameBuffer, kVarianceChannels, const_cast<Image&>(*variance), 0, 0);
+  if (standardError) {
+    for (const char* name : kStandardErrorChannels) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    addSlices(frameBuffer, kStandardErrorChannels, const_cast<Image&>(*standardError), 0, 0);
   }
 
   // To a temporary file, renamed when complete: an interrupted write leaves no truncated EXR.
@@ -147,7 +160,7 @@ void checkDataWindow(const std::string& path, const Imath::Box2i& window, int ch
 
 }  // namespace
 
-Image readExr(const std::string& path, ExrMetadata* meta, Image* variance) {
+Image readExr(const std::string& path, ExrMetadata* meta, Image* standardError) {
   const int64_t fileSize = regularFileSize(path);
   try {
     Imf::InputFile file(path.c_str());
@@ -165,16 +178,20 @@ Image readExr(const std::string& path, ExrMetadata* meta, Image* variance) {
     Imf::FrameBuffer frameBuffer;
     addSlices(frameBuffer, kColorChannels, image, dataWindow.min.x, dataWindow.min.y);
 
-    if (variance) {
-      int present = 0;
-      for (const char* name : kVarianceChannels) present += channels.findChannel(name) != nullptr;
-      if (present == 3) {
-        *variance = Image(width, height);
-        addSlices(frameBuffer, kVarianceChannels, *variance, dataWindow.min.x, dataWindow.min.y);
-      } else if (present == 0) {
-        *variance = Image();
+    bool legacyVariance = false;
+    if (standardError) {
+      const int present = channelsPresent(channels, kStandardErrorChannels);
+      const int legacy = channelsPresent(channels, kLegacyVarianceChannels);
+      legacyVariance = present == 0 && legacy == 3;
+      if (present == 3 || legacyVariance) {
+        *standardError = Image(width, height);
+        addSlices(frameBuffer, legacyVariance ? kLegacyVarianceChannels : kStandardErrorChannels, *standardError,
+                  dataWindow.min.x, dataWindow.min.y);
+      } else if (present == 0 && legacy == 0) {
+        *standardError = Image();
       } else {
-        throw Error("EXR '" + path + "' has only some of the variance.R/G/B channels");
+        throw Error("EXR '" + path + "' has only some of the " +
+                    (present ? "standardError.R/G/B" : "variance.R/G/B") + " channels");
       }
     }
 
@@ -195,6 +212,8 @@ Image readExr(const std::string& path, ExrMetadata* meta, Image* variance) {
 
     file.setFrameBuffer(frameBuffer);
     file.readPixels(dataWindow.min.y, dataWindow.max.y);
+    if (legacyVariance)
+      for (float& v : standardError->rgb) v = v >= 0.0f ? std::sqrt(v) : v;  // a negative one stays invalid
     return image;
   } catch (const Error&) {
     throw;

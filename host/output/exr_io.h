@@ -1,6 +1,8 @@
 #pragma once
-// OpenEXR output and input of linear RGB images (FLOAT channels R, G, B; optionally
-// variance.R, variance.G, variance.B) with typed header attributes for provenance.
+// OpenEXR output and input of linear RGB images (FLOAT channels R, G, B; optionally each
+// pixel's uncertainty as the standard error of its mean, standardError.R/G/B) with typed header
+// attributes for provenance. The standard error, not the variance: it has the image's own range,
+// where a float variance overflows above pixel values of ~1e19 and underflows below ~1e-19.
 #include <map>
 #include <string>
 
@@ -16,14 +18,15 @@ struct ExrMetadata {
   std::map<std::string, float> floats;
 };
 
-// Writes `image` (and `variance`, which must have the same size, when given) as 32-bit float
-// channels. Throws mixtrace::Error when the file cannot be written.
-void writeExr(const std::string& path, const Image& image, const ExrMetadata& meta, const Image* variance = nullptr);
+// Writes `image` (and `standardError`, which must have the same size, when given) as 32-bit
+// float channels. Throws mixtrace::Error when the file cannot be written.
+void writeExr(const std::string& path, const Image& image, const ExrMetadata& meta,
+              const Image* standardError = nullptr);
 
-// Reads R, G, B (all three are required) and, into `variance` when given, variance.R/G/B
-// (left empty — width 0 — when the file has none). String/int/float attributes that are not
-// standard EXR attributes go into `meta`. Throws mixtrace::Error (not an EXR file, missing
-// channels, ...).
-Image readExr(const std::string& path, ExrMetadata* meta = nullptr, Image* variance = nullptr);
+// Reads R, G, B (all three are required) and, into `standardError` when given, standardError.R/G/B,
+// or the square root of variance.R/G/B from files of earlier versions (left empty — width 0 — when
+// the file has neither). String/int/float attributes that are not standard EXR attributes go into
+// `meta`. Throws mixtrace::Error (not an EXR file, missing channels, ...).
+Image readExr(const std::string& path, ExrMetadata* meta = nullptr, Image* standardError = nullptr);
 
 }  // namespace mixtrace

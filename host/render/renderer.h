@@ -61,8 +61,9 @@ class Renderer {
   // Renders `count` more samples per pixel; returns when they are done.
   virtual void renderSamples(uint32_t count) = 0;
   virtual uint32_t samplesPerPixel() const = 0;
-  // Mean radiance per pixel, and the variance of that mean when `variance` is given.
-  virtual Image readImage(Image* variance = nullptr) const = 0;
+  // Mean radiance per pixel, and the standard error of that mean when `standardError` is given
+  // (not the variance: that would overflow float where the image is above ~1e19, shared/film.h).
+  virtual Image readImage(Image* standardError = nullptr) const = 0;
   virtual RenderCounters counters() const = 0;
   // Time per pass in milliseconds (GPU timestamp queries; empty where there are no passes).
   virtual std::map<std::string, double> passTimesMs() const = 0;

@@ -44,7 +44,6 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   if (s.cms.clusters && !cms) throw Error("internal: a CMS method without light clusters");
   setUpTraining(s);
   scene_.bindTo(set_);
-  sceneScale_ = scene.scene.bounds.magnitude();
   // CMS buffers (placeholders of one element for the other methods, so every binding is valid).
   const bool useCms = s.cms.clusters && cms && !cms->clusters.clusters.empty();
   clusterCount_ = useCms ? uint32_t(cms->clusters.clusters.size()) : 1;
@@ -170,7 +169,6 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   pc.cellTableSize = cellTableSize_;
   pc.gridOrigin = gridOrigin_;
   pc.gridInvCellSize = gridInvCellSize_;
-  pc.sceneScale = sceneScale_;
   pc.gatherStatistics = gathering ? 1u : 0u;
 
   dispatch(cmd, *generate_, pc, groupsFor(paths));
@@ -272,19 +270,19 @@ void WavefrontRenderer::recordClearFilm(VkCommandBuffer cmd) {
   computeBarrier(cmd);
 }
 
-Image WavefrontRenderer::readImage(Image* variance) const {
+Image WavefrontRenderer::readImage(Image* standardError) const {
   std::vector<glm::vec3> film(size_t(pixelCount_) * 2);
   film_.download(film.data(), film.size() * sizeof(glm::vec3));
   Image mean;
   mean.width = int(settings_.width);
   mean.height = int(settings_.height);
   mean.rgb.assign(size_t(pixelCount_) * 3, 0.0f);
-  if (variance) *variance = mean;
+  if (standardError) *standardError = mean;
   if (spp_ == 0) return mean;
   for (size_t p = 0; p < pixelCount_; ++p)
     for (int c = 0; c < 3; ++c) {
       mean.rgb[3 * p + c] = film[2 * p][c];
-      if (variance) variance->rgb[3 * p + c] = shared::varianceOfMean(film[2 * p + 1][c], float(spp_));
+      if (standardError) standardError->rgb[3 * p + c] = shared::standardErrorOfMean(film[2 * p + 1][c], float(spp_));
     }
   return mean;
 }

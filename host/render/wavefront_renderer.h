@@ -32,7 +32,7 @@ class WavefrontRenderer : public Renderer {
 
   void renderSamples(uint32_t count) override;
   uint32_t samplesPerPixel() const override { return spp_; }
-  Image readImage(Image* variance = nullptr) const override;
+  Image readImage(Image* standardError = nullptr) const override;
   RenderCounters counters() const override;
   std::map<std::string, double> passTimesMs() const override { return timer_.totalsMs(); }
   std::string deviceName() const override;
@@ -85,7 +85,6 @@ class WavefrontRenderer : public Renderer {
   Buffer rayOrigin_, rayDirection_, throughput_, radiance_, rng_, misPdf_, hits_, rayQueue_, shadowQueue_, queueState_, film_;
   // Controlled mixture sampling: cell table, statistics, solution, clusters, per-path state of the
   // previous vertex's BSDF sample. One-element placeholders when the method does not use them.
-  float sceneScale_ = 1.0f;   // Bounds::magnitude(), for ray offsets
   bool casAtomics_ = false;   // CMS statistics through compare-and-swap loops, not the *_float_atomics variants
   uint32_t clusterCount_ = 0, cellTableSize_ = 1;
   glm::vec3 gridOrigin_{0.0f};

@@ -12,6 +12,15 @@ namespace {
 
 double luminance(const glm::vec3& c) { return shared::luminance(c); }
 
+// In double: the float cross product of a triangle 1e-12 across (area 1e-24) squares to 1e-48
+// inside length() and underflows to 0, and one 1e15 across overflows, so the light set dropped
+// such emitters as "zero area" and scaled scenes rendered black. Radiance is scale invariant; the
+// light set must be too, over the whole range of float coordinates.
+double triangleArea(const Triangle& t) {
+  const glm::dvec3 p0(t.p[0]), p1(t.p[1]), p2(t.p[2]);
+  return 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
+}
+
 glm::vec3 averageEmission(const Scene& scene, const MaterialGpu& m) {
   glm::vec3 e = m.emission;
   if (m.emissiveTexture >= 0 && size_t(m.emissiveTexture) < scene.textures.size())
@@ -66,8 +75,8 @@ LightSet buildLightSet(const Scene& scene, const std::vector<uint32_t>& triangle
     const MaterialGpu& m = scene.materials[t.material];
     if (luminance(averageEmission(scene, m)) <= 0.0 && glm::length(m.emission) <= 0.0f) continue;
     primitiveSeen[t.primitive] = true;
-    float area = 0.5f * glm::length(glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
-    if (area > 0.0f && std::isfinite(area)) byPrimitive[t.primitive].push_back(b);
+    const double area = triangleArea(t);
+    if (area > 0.0 && std::isfinite(area)) byPrimitive[t.primitive].push_back(b);
   }
   set.zeroPowerPrimitives = uint32_t(primitiveSeen.size() - byPrimitive.size());
 
@@ -82,7 +91,7 @@ LightSet buildLightSet(const Scene& scene, const std::vector<uint32_t>& triangle
     for (uint32_t b : tris) {
       const Triangle& t = scene.triangles[triangleOrder[b]];
       const MaterialGpu& m = scene.materials[t.material];
-      double area = 0.5 * glm::length(glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
+      double area = triangleArea(t);
       double sides = (m.flags & shared::kMaterialDoubleSided) ? 2.0 : 1.0;
       // Every triangle stays samplable (weight floor) even if its average radiance rounds to 0.
       double w = area * std::max(luminance(averageEmission(scene, m)), 1e-12);

@@ -20,7 +20,6 @@ inline const PreparedScene* gSharedScene = nullptr;
 #define TEXEL(i) (::mixtrace::gSharedScene->texels[i])
 #define LIGHT(i) (::mixtrace::gSharedScene->lights.lights[i])
 #define EMITTER(i) (::mixtrace::gSharedScene->lights.emitters[i])
-#define SCENE_SCALE() (::mixtrace::gSharedScene->scene.bounds.magnitude())
 #define HAS_TEXTURES true
 #define HAS_AREA_LIGHTS true
 #define HAS_PUNCTUAL_LIGHTS true

@@ -42,7 +42,7 @@ layout(scalar, binding = BINDING_RAY_QUEUE) buffer RayQueueBuf { uint rayQueue[]
 layout(scalar, binding = BINDING_SHADOW_QUEUE) buffer ShadowQueueBuf { ShadowRay shadowQueue[]; };
 layout(scalar, binding = BINDING_QUEUE_STATE) buffer QueueStateBuf { QueueState queues; };
 
-layout(scalar, binding = BINDING_FILM) buffer FilmBuf { vec3 film[]; };  // [2 * pixel] mean, [2 * pixel + 1] sum of squared deviations
+layout(scalar, binding = BINDING_FILM) buffer FilmBuf { vec3 film[]; };  // [2 * pixel] mean, [2 * pixel + 1] sqrt of the sum of squared deviations (shared/film.h)
 
 // Controlled mixture sampling: per-cell statistics and solutions, flat arrays indexed by the
 // functions of shared/cms_layouts.h.
@@ -60,8 +60,3 @@ layout(scalar, binding = BINDING_CLUSTER_DEFAULTS) readonly buffer ClusterDefaul
 #define TEXEL(i) texels[i]
 #define LIGHT(i) lights[i]
 #define EMITTER(i) emitters[i]
-// The scene's coordinate magnitude for ray offsets; a pass with other push constants that never
-// offsets rays defines its own before including this file.
-#ifndef SCENE_SCALE
-#define SCENE_SCALE() pc.sceneScale
-#endif

@@ -186,7 +186,6 @@ struct PassConstants {
   uint cellTableSize;  // CMS: slots of the cell table (a power of two)
   vec3 gridOrigin;     // CMS: the cell grid's origin (scene bounds minimum)
   float gridInvCellSize;
-  float sceneScale;    // the scene's coordinate magnitude (shared/ray_offset.h)
   uint gatherStatistics;  // CMS: 1 when a later solve reads this sample pass's statistics
 };
 

@@ -24,6 +24,7 @@ struct LightSample {
   uint light;
   vec3 normal;      // geometric normal of the emitter at the point (area)
   uint triangle;    // emitting triangle (area), kNoHit otherwise
+  vec3 positionError;  // rounding-error bound of `position` (area: ray_offset.h), 0 otherwise
   bool isDelta;
 };
 
@@ -54,8 +55,45 @@ SHARED_FN uint selectEmitter(LightGpu l, float u) {
   return lo;
 }
 
-SHARED_FN vec3 triangleGeometricNormal(TriangleGeom g) { return normalize(cross(g.e1, g.e2)); }
-SHARED_FN float triangleArea(TriangleGeom g) { return 0.5f * length(cross(g.e1, g.e2)); }
+// Length of v without squaring its components in float: length() is 0 below ~1e-19 and
+// infinite above ~1e19, so a light 1e-12 across had no area and one 1e15 across no distance.
+SHARED_FN float scaledLength(vec3 v) {
+  float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+  return m > 0.0f && m <= kFloatMax ? m * length(v / m) : m;
+}
+
+// The cross product of the edges scaled to unit length: its direction is the geometric normal,
+// its length sin(angle between the edges), whatever the triangle's size.
+SHARED_FN vec3 unitEdgeCross(TriangleGeom g, OUT(float) len1, OUT(float) len2) {
+  len1 = scaledLength(g.e1);
+  len2 = scaledLength(g.e2);
+  if (!(len1 > 0.0f && len2 > 0.0f)) return vec3(0.0f);
+  return cross(g.e1 / len1, g.e2 / len2);
+}
+
+SHARED_FN vec3 triangleGeometricNormal(TriangleGeom g) {
+  float len1, len2;
+  vec3 c = unitEdgeCross(g, len1, len2);
+  float sinAngle = scaledLength(c);
+  return sinAngle > 0.0f ? c / sinAngle : vec3(0.0f);
+}
+
+// Solid-angle density of a uniform point on the triangle seen along d (from the shading point to
+// the point): distance^2 / (area |cos|). The density is dimensionless (scale invariant), so it is
+// formed from ratios, (|d| / |e1|) (|d| / |e2|) * 2 / |dot(e1/|e1| x e2/|e2|, d/|d|)|, never from
+// the area or the squared distance themselves, which under/overflow in float at scene scales
+// that the coordinates handle fine (1e-12 -> area 1e-24, distance^2 underflows; 1e15 -> area
+// 1e30 times a distance^2 of 1e30 overflows). 0 when the point has no density (degenerate
+// triangle, a point in the triangle's plane or at the shading point).
+SHARED_FN float triangleSolidAnglePdf(TriangleGeom g, vec3 d) {
+  float len1, len2;
+  vec3 c = unitEdgeCross(g, len1, len2);
+  float dist = scaledLength(d);
+  if (!(dist > 0.0f && len1 > 0.0f && len2 > 0.0f)) return 0.0f;
+  float cosTimesSin = abs(dot(c, d / dist));
+  if (!(cosTimesSin > 0.0f)) return 0.0f;
+  return 2.0f * (dist / len1) * (dist / len2) / cosTimesSin;
+}
 
 // Radiance leaving triangle `tri` at barycentrics (u, v) towards `towardsViewer` (any length).
 // One-sided (front face = counter-clockwise) unless the material is double-sided.
@@ -80,14 +118,7 @@ SHARED_FN vec3 emittedRadiance(uint tri, float u, float v, vec3 towardsViewer) {
 SHARED_FN float areaLightPointPdf(uint tri, vec3 from, vec3 lightPoint) {
   int e = TRIANGLE_SHADING(tri).emitter;
   if (e < 0) return 0.0f;
-  EmitterGpu em = EMITTER(uint(e));
-  TriangleGeom g = TRIANGLE(tri);
-  vec3 d = lightPoint - from;
-  float dist2 = dot(d, d);
-  vec3 n = cross(g.e1, g.e2);   // length = 2 * area
-  float cosTimesTwoArea = abs(dot(n, d)) * inversesqrt(dist2);
-  if (!(cosTimesTwoArea > 0.0f)) return 0.0f;
-  return em.pmf * 2.0f * dist2 / cosTimesTwoArea;
+  return EMITTER(uint(e)).pmf * triangleSolidAnglePdf(TRIANGLE(tri), lightPoint - from);
 }
 
 // The light an emitting triangle belongs to (only for triangles with an emitter).
@@ -116,6 +147,7 @@ SHARED_FN bool sampleLightPoint(vec3 p, uint light, float uEmitter, vec2 uPoint,
   s.triangle = kNoHit;
   s.isDelta = l.kind != kLightArea;
   s.normal = vec3(0.0f);
+  s.positionError = vec3(0.0f);
   s.radiance = vec3(0.0f);
   s.pdf = 0.0f;
   s.distance = 0.0f;
@@ -127,19 +159,16 @@ SHARED_FN bool sampleLightPoint(vec3 p, uint light, float uEmitter, vec2 uPoint,
     TriangleGeom g = TRIANGLE(em.triangle);
     vec3 bary = sampleTriangleBarycentrics(uPoint);   // weights of v0, v1, v2
     s.position = g.v0 + bary.y * g.e1 + bary.z * g.e2;
+    s.positionError = trianglePointError(g, bary.y, bary.z);
     s.triangle = em.triangle;
     vec3 d = s.position - p;
-    float dist2 = dot(d, d);
-    if (!(dist2 > 0.0f)) return false;
-    s.distance = sqrt(dist2);
+    s.distance = scaledLength(d);
+    if (!(s.distance > 0.0f)) return false;
     s.direction = d / s.distance;
-    vec3 n = cross(g.e1, g.e2);
-    float twoArea = length(n);
-    if (!(twoArea > 0.0f)) return false;
-    s.normal = n / twoArea;
-    float cosLight = abs(dot(s.normal, s.direction));
-    if (!(cosLight > 0.0f)) return false;
-    s.pdf = em.pmf * 2.0f * dist2 / (twoArea * cosLight);
+    s.normal = triangleGeometricNormal(g);
+    float pointPdf = triangleSolidAnglePdf(g, d);
+    if (!(pointPdf > 0.0f)) return false;
+    s.pdf = em.pmf * pointPdf;
     s.radiance = emittedRadiance(em.triangle, bary.y, bary.z, -d);
     return !isBlack(s.radiance);
   }
@@ -174,6 +203,15 @@ SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter
   return carries;
 }
 
+// Shadow rays stop this fraction of their length short of the light point (pbrt-v4's
+// ShadowEpsilon): the light's own triangle lies just beyond the offset target, and the
+// intersector's t for it errs by a few ulps of the ray's length over the cosine at the light,
+// which the target's offset (a few ulps of the light point's coordinates, ray_offset.h) does not
+// cover when the light is much nearer the world origin than the shading point. Relative to the
+// ray's length, so scale invariant; an occluder closer to the light than 1e-4 of the distance is
+// missed.
+const float kShadowRayShortening = 1e-4f;
+
 // The shadow ray from `origin` (already offset off its surface) to the light sample. It aims at
 // the light point offset towards the origin, and its direction is taken from the two offset
 // points themselves: aimed along the un-offset direction instead, a ray that leaves at a
@@ -186,10 +224,12 @@ SHARED_FN void shadowRay(vec3 origin, LightSample s, OUT(vec3) direction, OUT(fl
     return;
   }
   vec3 target = s.isDelta ? s.position
-                          : offsetRayOrigin(s.position, dot(s.normal, s.direction) < 0.0f ? s.normal : -s.normal);
+                          : offsetRayOrigin(s.position, s.positionError,
+                                            dot(s.normal, s.direction) < 0.0f ? s.normal : -s.normal);
   vec3 toTarget = target - origin;
-  tMax = length(toTarget);
-  direction = tMax > 0.0f ? toTarget / tMax : s.direction;
+  float toTargetLength = scaledLength(toTarget);
+  direction = toTargetLength > 0.0f ? toTarget / toTargetLength : s.direction;
+  tMax = toTargetLength * (1.0f - kShadowRayShortening);
 }
 
 SHARED_END_WITH_BUFFERS

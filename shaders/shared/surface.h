@@ -6,6 +6,7 @@
 #include "shared/bsdf.h"
 #include "shared/dialect.h"
 #include "shared/layouts.h"
+#include "shared/lights.h"
 #include "shared/texture.h"
 SHARED_BEGIN_WITH_BUFFERS
 
@@ -22,7 +23,7 @@ SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDir
   TriangleShading s = TRIANGLE_SHADING(tri);
   SurfaceHit h;
   h.position = g.v0 + u * g.e1 + v * g.e2;
-  vec3 ng = normalize(cross(g.e1, g.e2));
+  vec3 ng = triangleGeometricNormal(g);   // normalize(cross) underflows for tiny triangles
   bool front = dot(ng, incomingDirection) < 0.0f;
   h.geometricNormal = front ? ng : -ng;
   vec3 ns = (1.0f - u - v) * s.n0 + u * s.n1 + v * s.n2;

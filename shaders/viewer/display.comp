@@ -5,7 +5,6 @@
 // packed as 8-bit sRGB into the display buffer the host copies to the swapchain image.
 #include "shared/display.h"
 #define PUSH_CONSTANT_TYPE DisplayConstants
-#define SCENE_SCALE() 1.0   // the display offsets no rays (gpu/buffers.glsl)
 #include "gpu/buffers.glsl"
 #include "gpu/cms_buffers.glsl"
 #include "shared/cms_sampling.h"
@@ -41,8 +40,8 @@ vec3 viewColour(uint pixel) {
   if (pc.view == kViewImage) return encode(mean);
   if (pc.view == kViewVariance) {
     // Relative standard deviation of the mean, log scale from 0.1 % to 100 %.
-    float variance = varianceOfMean(luminance(film[2u * pixel + 1u]), float(pc.spp));
-    float relative = sqrt(variance) / (luminance(mean) + 1e-3);
+    float standardError = standardErrorOfMean(luminance(film[2u * pixel + 1u]), float(pc.spp));
+    float relative = standardError / (luminance(mean) + 1e-3);
     return heatColour((log(max(relative, 1e-3)) / log(10.0) + 3.0) / 3.0);
   }
   return cellView(pixel);

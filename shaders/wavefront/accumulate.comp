@@ -1,10 +1,12 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Stage 5: folds each path's radiance into its pixel's running mean and sum of squared
-// deviations (Welford's update: unlike a float sum of squares it does not cancel, so the variance
-// of bright, nearly constant pixels stays meaningful). A NaN or Inf sample is counted and enters
-// as 0: it never reaches the image.
+// Stage 5: folds each path's radiance into its pixel's running mean and sqrt of the sum of
+// squared deviations (Welford's update: unlike a float sum of squares it does not cancel, so the
+// variance of bright, nearly constant pixels stays meaningful; kept as sqrt(M2) so that it has the
+// image's range, shared/film.h). A NaN or Inf sample is counted and enters as 0: it never reaches
+// the image.
 #include "gpu/buffers.glsl"
+#include "shared/film.h"
 
 layout(local_size_x = kWorkgroupSize) in;
 
@@ -22,5 +24,5 @@ void main() {
   vec3 delta = l - mean;
   mean += delta / n;
   film[2u * pixel] = mean;
-  film[2u * pixel + 1u] += delta * (l - mean);
+  film[2u * pixel + 1u] = filmRootM2Update(film[2u * pixel + 1u], delta, l - mean);
 }

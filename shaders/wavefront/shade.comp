@@ -84,7 +84,7 @@ void main() {
   BsdfParams bsdf = surfaceBsdf(sh);
   OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
   vec3 wo = toLocal(frame, -dir);
-  vec3 origin = offsetRayOrigin(sh.position, sh.geometricNormal);
+  vec3 origin = offsetRayOrigin(sh.position, hitPointError(hit.triangle, hit.u, hit.v), sh.geometricNormal);
 
   uint cell = kNoCell;
   bool cv = false;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -94,7 +95,7 @@ TEST(DeviceChoice, ListDevicesPrintsIndexNameTypeDriverAndUsability) {
 }
 
 TEST(DeviceChoice, RenderRefusesAnIndexOutOfRange) {
-  const testing::RunResult r = testing::runMixtrace("render -q --device 1 --spp 1 --width 4 --height 4 --out /dev/null");
+  const testing::RunResult r = testing::runMixtrace("render -q --device 1 --spp 1 --width 4 --height 4 --out " + (std::filesystem::temp_directory_path() / "mixtrace_device_choice.exr").string());
   EXPECT_EQ(r.exitCode, 1);
   ASSERT_EQ(r.stderrLines().size(), 1u) << r.stderrText;
   expectMentions(r.stderrText, "mixtrace: error: --device 1: no device with that index");

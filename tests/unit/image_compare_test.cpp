@@ -85,7 +85,7 @@ double expectedMeanZ(const Render& r, double relativeError, int channel) {
   double sum = 0.0, var = 0.0;
   for (size_t p = 0; p < r.mean.pixelCount(); ++p) {
     sum += r.mean.rgb[3 * p + channel];
-    var += r.variance.rgb[3 * p + channel];
+    var += double(r.variance.rgb[3 * p + channel]) * r.variance.rgb[3 * p + channel];  // standard errors
   }
   return relativeError * sum / std::sqrt(2.0 * var);
 }
@@ -167,7 +167,7 @@ TEST_F(RenderedImages, TwoPercentScaleErrorIsCaughtByTheImageMeanTest) {
   // the corrected image-mean threshold (~2.9), so it is caught whatever the seeds.
   for (int c = 0; c < 3; ++c) EXPECT_GT(expectedMeanZ(textured(2), 0.02, c), 8.0) << "channel " << c;
 
-  const Image biased = scaled(textured(2).mean, 1.02), biasedVariance = scaled(textured(2).variance, 1.02 * 1.02);
+  const Image biased = scaled(textured(2).mean, 1.02), biasedVariance = scaled(textured(2).variance, 1.02);  // standard errors
   const ComparisonResult r = compareImages(biased, biasedVariance, textured(1).mean, textured(1).variance);
   EXPECT_FALSE(r.agree) << r.summary();
   EXPECT_FALSE(r.meanTestPassed);
@@ -317,7 +317,8 @@ TEST_F(RenderedImages, TooLittlePowerIsInconclusive) {
   EXPECT_STREQ(strong.verdict(), "agree");
 }
 
-// --- Synthetic images: Gaussian pixel estimates with known mean and variance of the mean.
+// --- Synthetic images: Gaussian pixel estimates with known mean and standard error of the mean
+// (`var` below: what compareImages takes, exr_io.h).
 
 constexpr int kW = 64, kH = 48;
 
@@ -332,7 +333,7 @@ void groundTruth(Image& mean, Image& variance) {
         const double mu = 0.2 + 1.5 * (x + 1) / kW * (1.0 + 0.3 * c) + 0.5 * std::sin(0.3 * y);
         const double relSd = 0.05 + 0.15 * ((x * 7 + y * 13 + c) % 10) / 9.0;
         mean.pixel(x, y)[c] = float(mu);
-        variance.pixel(x, y)[c] = float(mu * relSd * mu * relSd);
+        variance.pixel(x, y)[c] = float(std::abs(mu) * relSd);
       }
 }
 
@@ -341,7 +342,7 @@ Image draw(const Image& mean, const Image& variance, uint32_t seed) {
   std::normal_distribution<double> normal;
   Image image(mean.width, mean.height);
   for (size_t i = 0; i < image.rgb.size(); ++i)
-    image.rgb[i] = float(mean.rgb[i] + std::sqrt(double(variance.rgb[i])) * normal(rng));
+    image.rgb[i] = float(mean.rgb[i] + double(variance.rgb[i]) * normal(rng));
   return image;
 }
 
@@ -356,7 +357,7 @@ TEST(CompareImagesSynthetic, SameMeanAgreesAtTheNominalRate) {
     disagreements += !r.agree;
     EXPECT_LE(r.failed, 1u) << "seed " << seed << ": " << r.summary();
     for (size_t i = 0; i < a.rgb.size(); ++i) {
-      beyond99 += std::abs(a.rgb[i] - b.rgb[i]) / std::sqrt(2.0 * var.rgb[i]) > 2.5758;
+      beyond99 += std::abs(a.rgb[i] - b.rgb[i]) / (std::sqrt(2.0) * var.rgb[i]) > 2.5758;
       ++tested;
     }
   }
@@ -366,7 +367,8 @@ TEST(CompareImagesSynthetic, SameMeanAgreesAtTheNominalRate) {
   EXPECT_NEAR(double(beyond99) / tested, 0.01, 0.002);
 }
 
-Image noisier(const Image& variance, double sdFactor) { return scaled(variance, sdFactor * sdFactor); }
+// `se` holds standard errors (what compareImages takes): sdFactor times the noise.
+Image noisier(const Image& se, double sdFactor) { return scaled(se, sdFactor); }
 
 // minDetectable is the difference the image-mean test finds with 80 % probability: the formula
 // by hand, and the detection rate when one channel's mean really differs by that much.
@@ -378,7 +380,7 @@ TEST(CompareImagesSynthetic, MinDetectableDifferenceHasTheStatedPower) {
   int channel = 0;
   for (int c = 0; c < 3; ++c) {
     double sumB = 0.0, sumVar = 0.0;
-    for (size_t p = 0; p < mu.pixelCount(); ++p) sumVar += 2.0 * var.rgb[3 * p + c];
+    for (size_t p = 0; p < mu.pixelCount(); ++p) sumVar += 2.0 * double(var.rgb[3 * p + c]) * var.rgb[3 * p + c];
     const Image b = draw(mu, var, 2);
     for (size_t p = 0; p < mu.pixelCount(); ++p) sumB += b.rgb[3 * p + c];
     const double z80 = normalUpperQuantile(0.2);
@@ -458,7 +460,7 @@ TEST(CompareImagesSynthetic, LocalPatchDiffersPerPixel) {
   // A 3x3 patch, 12 standard deviations brighter: 27 pixel-channels, far above the allowance of 9.
   for (int y = 20; y < 23; ++y)
     for (int x = 30; x < 33; ++x)
-      for (int c = 0; c < 3; ++c) a.pixel(x, y)[c] += 12.0f * std::sqrt(var.pixel(x, y)[c]);
+      for (int c = 0; c < 3; ++c) a.pixel(x, y)[c] += 12.0f * var.pixel(x, y)[c];
   const ComparisonResult r = compareImages(a, var, b, var);
   EXPECT_EQ(r.allowedFailures, 9u);
   EXPECT_GE(r.failed, 27u);

@@ -37,7 +37,8 @@ TEST_P(MethodAgreement, UniformAndPowerSelectionAgree) {
   double sum[2] = {0.0, 0.0};
   for (size_t i = 0; i < n; ++i) {
     double d = double(mean[0].rgb[i]) - mean[1].rgb[i];
-    double v = double(variance[0].rgb[i]) + variance[1].rgb[i];
+    // readExr gives standard errors of the mean; their squares add.
+    double v = double(variance[0].rgb[i]) * variance[0].rgb[i] + double(variance[1].rgb[i]) * variance[1].rgb[i];
     sum[0] += mean[0].rgb[i];
     sum[1] += mean[1].rgb[i];
     if (v > 0.0 && std::abs(d) / std::sqrt(v) > 4.5) ++outliers;

@@ -87,7 +87,7 @@ inline ZTestResult zTest(const Image& mean, const Image& variance, int spp, cons
       const size_t i = 3 * p + c;
       const double expected = scale * double(e.value.rgb[i]);
       const double measured = mean.rgb[i];
-      const double var = variance.rgb[i];
+      const double var = double(variance.rgb[i]) * variance.rgb[i];  // readExr gives standard errors
       const double tolerance = relTolerance * std::abs(expected) + 1e-7;
       const double excess = std::max(0.0, std::abs(measured - expected) - tolerance);
       const double z = var > 0.0 ? excess / std::sqrt(var) : (excess > 0.0 ? 1e30 : 0.0);
