@@ -1,6 +1,8 @@
-// Light clusters of controlled mixture sampling (../shared/cms.md §2): one sampling technique per
-// cluster. A cluster's lights are listed contiguously in a separate uint array (clusterLights),
-// so a cluster record is four words. Built on the host by host/scene/light_clusters.cpp.
+// Light clusters of controlled mixture sampling (docs/estimator.md §2): one sampling technique per
+// cluster. A cluster's lights are listed contiguously in a separate array (clusterLights, of
+// ClusterLightGpu in layouts.h), so a cluster record is four words. Built on the host by
+// host/scene/light_clusters.cpp; its layout is checked with those of layouts.h
+// (host/vulkan/layout_checks.cpp).
 #ifndef MIXTRACE_SHARED_CLUSTER_LAYOUT_H
 #define MIXTRACE_SHARED_CLUSTER_LAYOUT_H
 #include "shared/dialect.h"

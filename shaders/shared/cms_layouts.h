@@ -1,6 +1,7 @@
-// Controlled mixture sampling (../shared/cms.md): the per-cell statistics the shade pass adds to,
-// the coefficients the solve pass writes, and the light clusters, as flat float/uint arrays with
-// index functions (their size depends on the cluster count L, so they are not fixed structs).
+// Controlled mixture sampling (docs/estimator.md): the per-cell statistics the shade pass adds
+// to, the coefficients the solve pass writes, and the light clusters, as flat float/uint arrays
+// with index functions (their size depends on the cluster count L, so they are not fixed structs;
+// no layout check applies to them beyond their element type).
 // Shared by the GPU passes, the CPU reference and the tests.
 #ifndef MIXTRACE_SHARED_CMS_LAYOUTS_H
 #define MIXTRACE_SHARED_CMS_LAYOUTS_H
@@ -20,8 +21,9 @@ const uint kMaxClusters = 32u;
 // third digit on Veach MIS (0.0297) and many_lights (0.0079) with caps of 4096 and 16384.
 const uint kCellSampleCap = 4096u;
 
-// Statistics of one cell (cms.md §4), floats, L clusters plus the BSDF technique B. A is the
-// arrowhead matrix over (p_1 .. p_L, p_B): clusters are disjoint, so only A_kk, A_kB, A_BB exist.
+// Statistics of one cell (docs/estimator.md §4), floats, L clusters plus the BSDF technique B. A
+// is the arrowhead matrix over (p_1 .. p_L, p_B): clusters are disjoint, so only A_kk, A_kB, A_BB
+// exist.
 //   [0, L)            A_kk
 //   [L, 2L)           A_kB
 //   2L                A_BB
@@ -54,21 +56,22 @@ SHARED_FN uint solutionAlphaSum(uint L, uint channel) { return 4u * L + 4u + cha
 const uint kSolveLearnSelection = 1u;   // write learned c_k (methods learned, cms); else the defaults
 const uint kSolveControlVariate = 2u;   // write alpha (methods cv, cms); else alpha = 0, invalid
 
-// Push constants of the solve pass (<= 48 bytes: the pipeline layout's push-constant range).
+// Push constants of the solve pass: pushed into the range of the pipeline layout all passes share,
+// sizeof(PassConstants) bytes (host/vulkan/layout_checks.cpp checks that it fits).
 struct SolveParams {
   uint cellCount;
   uint clusterCount;     // L
   uint minSamples;       // below this many samples a cell keeps no control variate
   uint flags;            // kSolve*
   float ridge;           // Tikhonov term, relative to the mean of the scaled diagonal
-  float defensive;       // epsilon of cms.md §7: weight of the default selection in c_k
+  float defensive;       // epsilon of docs/estimator.md §7: the default selection's share in c_k
   float pad0;
   float pad1;
 };
 
-// The weight of a vertex's samples in its cell's statistics (cms.md §5): the squared path
-// throughput relative to a rough estimate of the pixel, so a cell minimises the summed relative
-// variance of the pixels it feeds. Any weight keeps the estimator unbiased.
+// The weight of a vertex's samples in its cell's statistics (docs/estimator.md §5): the squared
+// path throughput relative to a rough estimate of the pixel, so a cell minimises the summed
+// relative variance of the pixels it feeds. Any weight keeps the estimator unbiased.
 SHARED_FN float relativeSampleWeight(vec3 throughput, vec3 pixelEstimate) {
   vec3 r = throughput / (vec3(0.01f) + max(pixelEstimate, vec3(0.0f)));
   return (r.x * r.x + r.y * r.y + r.z * r.z) * (1.0f / 3.0f);

@@ -1,7 +1,9 @@
 // Every struct that crosses the host/GPU boundary, declared once. GLSL reads these buffers with
 // layout(scalar) (VK_EXT_scalar_block_layout, core in Vulkan 1.2), whose packing is exactly C's
-// for these types, so C++ (GLM) and GLSL agree byte for byte; static_asserts in
-// host/vulkan/layout_checks.cpp pin the sizes.
+// for these types (vec3 is 12 bytes, 4-aligned), so C++ (GLM) and GLSL agree byte for byte. The
+// contract is checked twice: host/vulkan/layout_checks.cpp static_asserts every size and offset
+// against host/vulkan/gpu_layout_table.inc, and tests/unit/layout_contract_test.cpp compares them
+// with the offsets the compiled shaders declare. A change to a struct here updates that table.
 #ifndef MIXTRACE_SHARED_LAYOUTS_H
 #define MIXTRACE_SHARED_LAYOUTS_H
 #include "shared/dialect.h"
@@ -124,8 +126,9 @@ struct HitRecord {
 
 // A pending shadow ray and the radiance it adds to its path when unoccluded.
 // With controlled mixture sampling the light sample's control-variate and statistics terms also
-// wait for visibility (cms.md §1: a light point hidden from the vertex is a point the BSDF cannot
-// sample, p_B = 0 there): the shadow pass pays them with the p_B that visibility decides.
+// wait for visibility (docs/estimator.md §1: a light point hidden from the vertex is a point the
+// BSDF cannot sample, p_B = 0 there): the shadow pass pays them with the p_B that visibility
+// decides.
 struct ShadowRay {
   vec3 origin;
   float tMax;
@@ -171,7 +174,9 @@ struct ClusterLightGpu {
 const uint kPrepareRays = 0u;     // before intersect + shade
 const uint kPrepareShadows = 1u;  // before shadow
 
-// Per-dispatch constants (push constants, <= 128 bytes).
+// Per-dispatch constants (push constants). Its size is the push-constant range of the pipeline
+// layout every pass shares, so it, SolveParams and DisplayConstants must fit it, and it must fit
+// the 128 bytes every device guarantees (host/vulkan/layout_checks.cpp).
 struct PassConstants {
   uint pathCount;      // paths in this wavefront chunk
   uint pixelOffset;    // first pixel of the chunk
