@@ -75,6 +75,14 @@ class SpirvLayout {
     return out;
   }
 
+  // (element type, ArrayStride) of every array with an explicit stride.
+  std::vector<std::pair<uint32_t, uint32_t>> arrayStrides() const {
+    std::vector<std::pair<uint32_t, uint32_t>> out;
+    for (const auto& [id, a] : arrays_)
+      if (auto s = arrayStrides_.find(id); s != arrayStrides_.end()) out.push_back({a.element, s->second});
+    return out;
+  }
+
   // Bytes a value of `type` covers in an explicitly laid-out block: up to the end of its last
   // member for a struct (no tail padding in the scalar layout).
   uint32_t byteSize(uint32_t type) const {

@@ -105,6 +105,24 @@ TEST(LayoutContract, GlslOffsetsAndStridesEqualCpp) {
   for (const auto& [name, layout] : cpp) EXPECT_TRUE(seen.count(name)) << name << " was found in no embedded shader";
 }
 
+// Buffers of bare scalars and vectors (ray origins, throughput, film: vec3; cell keys: uint64_t)
+// hold C++ arrays of float, uint, glm::vec3, uint64_t: tightly packed, as only the scalar layout
+// packs them (std430 would give a vec3 array a 16-byte stride). Struct arrays are checked above.
+TEST(LayoutContract, BareArraysArePacked) {
+  size_t arrays = 0;
+  for (const std::string& module : embeddedShaderNames()) {
+    const testing::SpirvLayout spirv = readModule(module);
+    std::set<uint32_t> structIds;
+    for (const testing::SpirvLayout::Struct& s : spirv.structs()) structIds.insert(s.id);
+    for (const auto& [element, stride] : spirv.arrayStrides()) {
+      if (structIds.count(element)) continue;
+      ++arrays;
+      EXPECT_EQ(stride, spirv.byteSize(element)) << module << ": an array of type %" << element << " is not packed";
+    }
+  }
+  EXPECT_GT(arrays, 0u);
+}
+
 // Every pass pushes its struct into the one range of the shared pipeline layout,
 // sizeof(PassConstants) bytes (host/render/wavefront_renderer.cpp), which every device holds.
 TEST(LayoutContract, PushConstantBlocksFitTheRange) {
