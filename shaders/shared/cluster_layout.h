@@ -1,4 +1,4 @@
-// Light clusters of controlled mixture sampling (../shared/cms.md §2): one sampling technique per
+// Light clusters of controlled mixture sampling (docs/estimator.md §2): one sampling technique per
 // cluster. A cluster's lights are listed contiguously in a separate uint array (clusterLights),
 // so a cluster record is four words. Built on the host by host/scene/light_clusters.cpp.
 #ifndef MIXTRACE_SHARED_CLUSTER_LAYOUT_H
