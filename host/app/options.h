@@ -90,8 +90,7 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv);
 // The full text printed by --help (ends with a newline).
 std::string helpText();
 
-// The values --method and --backend accept (the method list lives in options.cpp: kMethods).
+// The values --method accepts (the method list lives in options.cpp: kMethods).
 const std::vector<std::string>& knownMethods();
-const std::vector<std::string>& knownBackends();
 
 }  // namespace mixtrace
