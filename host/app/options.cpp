@@ -351,7 +351,6 @@ ParsedCommandLine parseCompare(const std::vector<std::string>& args) {
 }  // namespace
 
 const std::vector<std::string>& knownMethods() { return kMethods; }
-const std::vector<std::string>& knownBackends() { return kBackends; }
 
 ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
   std::vector<std::string> args;

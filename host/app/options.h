@@ -50,7 +50,8 @@ struct RenderOptions {
   bool variance = false;         // --variance: also write per-pixel variance of the mean
   int maxClusters = 16;          // --max-clusters: CMS light clusters (techniques), 1..32
   int cells = 16;                // --cells: CMS cells along the longest scene axis
-  bool relativeWeighting = true; // --relative-weighting on|off: CMS statistics weighting (cms.md §5)
+  bool relativeWeighting = true; // --relative-weighting on|off: CMS statistics weighting
+                                 // (docs/estimator.md §5)
   int trainSpp = 0;              // --train-spp N: no CMS solve after N spp (0 = no limit)
   bool floatAtomics = true;      // --float-atomics on|off: CMS statistics with float atomics or CAS loops
   std::string assetRoot;         // --asset-root DIR: external scene files may lie under DIR (default: scene's folder)
@@ -89,8 +90,7 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv);
 // The full text printed by --help (ends with a newline).
 std::string helpText();
 
-// The values --method and --backend accept (the method list lives in options.cpp: kMethods).
+// The values --method accepts (the method list lives in options.cpp: kMethods).
 const std::vector<std::string>& knownMethods();
-const std::vector<std::string>& knownBackends();
 
 }  // namespace mixtrace

@@ -22,9 +22,9 @@ CmsScene setUpClusters(PreparedScene& scene, uint32_t maxClusters, LightSelectio
   cms.clusters = buildLightClusters(scene, maxClusters, defaults);
   LightClusters& c = cms.clusters;
   if (defaults == LightSelection::Power) {
-    // The defaults are also the defensive part of a learned selection (cms.md §7). Half of it
-    // uniform over clusters keeps every c_k >= eps / (2 L): the control-variate term of a light
-    // sample, about alpha_k / c_k, stays bounded even for a cluster of very little power.
+    // The defaults are also the defensive part of a learned selection (docs/estimator.md §7). Half
+    // of it uniform over clusters keeps every c_k >= eps / (2 L): the control-variate term of a
+    // light sample, about alpha_k / c_k, stays bounded even for a cluster of very little power.
     const float uniform = 1.0f / float(c.defaultSelection.size());
     for (float& d : c.defaultSelection) d = 0.5f * d + 0.5f * uniform;
   }

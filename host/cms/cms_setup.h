@@ -1,5 +1,5 @@
 #pragma once
-// What a method needs of controlled mixture sampling (../shared/cms.md), and the light clusters
+// What a method needs of controlled mixture sampling (docs/estimator.md), and the light clusters
 // it samples through. The pt-* methods use none of it.
 #include <string>
 #include <vector>
@@ -29,10 +29,10 @@ CmsScene setUpClusters(PreparedScene& scene, uint32_t maxClusters, LightSelectio
 
 // Whether the method cms, on a scene with these clusters, is better run as plain MIS (pt-power's
 // estimator): with at most one cluster there is no selection to learn, and the control variate
-// alone measured no gain there, while it costs about 1.3x per sample on lavapipe (cms.md §7 note
-// in benchmarks/README.md: relMSE at 64 spp, 160x120, cms vs pt-power: Cornell box 1.00x, Veach
-// MIS lit by only one of its lights 1.00x and 0.99x). The research methods learned and cv run as
-// asked.
+// alone measured no gain there, while it costs about 1.3x per sample on lavapipe (docs/estimator.md
+// §7 note in benchmarks/README.md: relMSE at 64 spp, 160x120, cms vs pt-power: Cornell box 1.00x,
+// Veach MIS lit by only one of its lights 1.00x and 0.99x). The research methods learned and cv run
+// as asked.
 bool cmsReducesToPlainMis(const CmsMethod& method, const CmsScene& scene);
 
 // The line that says why cms runs as plain MIS on this scene (cmsReducesToPlainMis): that its

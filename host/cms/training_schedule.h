@@ -1,11 +1,11 @@
 #pragma once
 // When the learning methods (learned, cv, cms) solve their cells and which samples gather the
-// statistics a solve reads (cms.md §7). Training runs in iterations of doubling length: the cells
-// are solved after samples 1, 3, 7, 15, ... But a solve pays only if an iteration follows that is
-// at least as long as the statistics behind it: with 64 planned samples, solving after sample 63
-// would serve one sample. So the last iteration runs from the last useful solve to the end, and
-// its samples gather nothing: no solve reads them. That is about half of every render's samples,
-// which then pay none of the statistics' cost. Both backends follow this one schedule.
+// statistics a solve reads (docs/estimator.md §7). Training runs in iterations of doubling length:
+// the cells are solved after samples 1, 3, 7, 15, ... But a solve pays only if an iteration follows
+// that is at least as long as the statistics behind it: with 64 planned samples, solving after
+// sample 63 would serve one sample. So the last iteration runs from the last useful solve to the
+// end, and its samples gather nothing: no solve reads them. That is about half of every render's
+// samples, which then pay none of the statistics' cost. Both backends follow this one schedule.
 #include <cstdint>
 
 namespace mixtrace {

@@ -26,7 +26,8 @@ constexpr double kRoundOffRelativeTolerance = 1e-4;
 // Default per-pixel allowance for heavy-tailed outliers (see the header).
 constexpr double kDefaultFailFraction = 1e-3;
 constexpr size_t kMinimumAllowedFailures = 2;
-// Fraction of largest per-pixel errors dropped by relMSE (cms.md §8) and its denominator floor.
+// Fraction of largest per-pixel errors dropped by relMSE (docs/estimator.md §8) and its denominator
+// floor.
 constexpr double kRelMseTrimFraction = 1e-3;
 constexpr double kRelMseEpsilon = 1e-4;
 // Below this many samples per pixel the per-pixel z-scores follow Student-t tails with a handful

@@ -51,7 +51,7 @@
 //     difference shrinks as 1/sqrt(spp * pixels)). "differ" is never inconclusive: a significant
 //     difference is evidence whatever the power.
 //
-// relMse follows the paper's protocol (shared/cms.md §8), with B as the reference: per pixel
+// relMse follows the paper's protocol (docs/estimator.md §8), with B as the reference: per pixel
 // e = (1/3) sum_c (a - b)^2 / (b^2 + 1e-4); the floor(0.001 * P) largest e are dropped (none for
 // images under 1000 pixels) and the rest averaged.
 #include <cstddef>
@@ -77,7 +77,7 @@ struct ComparisonResult {
   double alpha = 0.01;          // family-wise significance used
   double zThreshold = 0.0;      // per-pixel two-sided threshold after the correction over `channels`
   double meanZThreshold = 0.0;  // image-mean two-sided threshold after the correction over 3 channels
-  double relMse = 0.0;          // cms.md §8, A against B as the reference
+  double relMse = 0.0;          // docs/estimator.md §8, A against B as the reference
   double meanA[3] = {0, 0, 0}, meanB[3] = {0, 0, 0};  // per-channel image means
   double meanRatio[3] = {1, 1, 1};   // per channel: mean(A) / mean(B) (1 when both are 0)
   double meanRatioZ[3] = {0, 0, 0};  // z-score of the image-mean difference (from the summed variances)
@@ -119,7 +119,7 @@ double normalUpperQuantile(double p);
 // independent two-sided tests have family-wise false-alarm rate alpha.
 double sidakTwoSidedThreshold(double alpha, size_t tests);
 
-// The relMSE of `image` against `reference` alone (cms.md §8); same size required.
+// The relMSE of `image` against `reference` alone (docs/estimator.md §8); same size required.
 double relativeMse(const Image& image, const Image& reference);
 // The same for two EXR files (B the reference); throws Error for unreadable or mismatched files.
 double relativeMseOfExrFiles(const std::string& pathA, const std::string& pathB);

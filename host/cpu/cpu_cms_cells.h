@@ -1,5 +1,5 @@
 #pragma once
-// The controlled-mixture-sampling state of the CPU reference (../shared/cms.md): the hashed cell
+// The controlled-mixture-sampling state of the CPU reference (docs/estimator.md): the hashed cell
 // table, each cell's statistics in double precision, its sample count and its solution, the light
 // clusters, and the pixel estimate the relative weights divide by. It follows the Vulkan renderer
 // (render/wavefront_renderer.cpp, shaders/wavefront/shade.comp, shadow.comp) rule for rule; only
@@ -49,13 +49,15 @@ class CpuCmsCells {
   bool gathering(uint32_t cell) const {
     return passGathers_ && cellSamples_[cell].load(std::memory_order_relaxed) < shared::kCellSampleCap;
   }
-  // The weight of a sample of a vertex with path throughput `throughput` in `pixel` (cms.md §5):
-  // shared/cms_layouts.h relativeSampleWeight, 1 without relative weighting, 0 while not gathering.
+  // The weight of a sample of a vertex with path throughput `throughput` in `pixel`
+  // (docs/estimator.md §5): shared/cms_layouts.h relativeSampleWeight, 1 without relative
+  // weighting, 0 while not gathering.
   double sampleWeight(glm::vec3 throughput, uint32_t pixel) const;
 
-  // The statistics of one sample (cms.md §4), k = shared::kNoCell for a sample in no cluster's
-  // support: A_kk += w pk^2 / peff^2, A_kB += w pk pB / peff^2, A_BB += w pB^2 / peff^2 and
-  // b_k += w f pk / peff^2, b_B += w f pB / peff^2. Computed in double from the float densities.
+  // The statistics of one sample (docs/estimator.md §4), k = shared::kNoCell for a sample in no
+  // cluster's support: A_kk += w pk^2 / peff^2, A_kB += w pk pB / peff^2, A_BB += w pB^2 / peff^2
+  // and b_k += w f pk / peff^2, b_B += w f pB / peff^2. Computed in double from the float
+  // densities.
   void addSampleToA(uint32_t cell, uint32_t k, double pk, double pB, double peff, double w);
   void addSampleToB(uint32_t cell, uint32_t k, glm::vec3 f, double pk, double pB, double peff, double w);
   void countVertex(uint32_t cell) { cellSamples_[cell].fetch_add(1, std::memory_order_relaxed); }

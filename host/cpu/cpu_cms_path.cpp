@@ -12,7 +12,8 @@ namespace mixtrace {
 namespace {
 
 // What the BSDF sample of the previous vertex left for the next one: its terms depend on what it
-// hits (cms.md §3), so they are paid once the next hit is known (shade.comp's cv* path state).
+// hits (docs/estimator.md §3), so they are paid once the next hit is known (shade.comp's cv* path
+// state).
 struct PendingBsdfSample {
   float pdf = 0.0f;              // p_B; 0: camera ray, nothing pending
   uint32_t cell = shared::kNoCell;
@@ -150,7 +151,7 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
     vec3 wiWorld = toWorld(frame, wiLocal);
     if (!sampled || !(dot(wiWorld, sh.geometricNormal) > 0.0f)) {
       // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
-      // (cms.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
+      // (docs/estimator.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
       if (cv) radiance -= beta * cellAlphaB(cell, L);
       if (cell != kNoCell && cells.gathering(cell))
         cells.addSampleToA(cell, kNoCell, 0.0, 1.0, 1.0, weightOf(beta));

@@ -1,6 +1,6 @@
 #pragma once
 // One path of the CPU reference with controlled mixture sampling (methods learned, cv, cms;
-// ../shared/cms.md): at every vertex the light comes from a cluster chosen by the vertex's cell,
+// docs/estimator.md): at every vertex the light comes from a cluster chosen by the vertex's cell,
 // p_eff = c_k p_k + p_B, every sample adds its statistics to the cell and, with the control
 // variate, the vertex pays + sum(alpha) - g(z)/p_eff(z) for both samples. It is the logic of
 // shaders/wavefront/shade.comp and shadow.comp written as one loop, drawing the same random

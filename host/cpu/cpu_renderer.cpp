@@ -164,8 +164,8 @@ void CpuRenderer::renderSamples(uint32_t count) {
     cms_->setGathering(schedule_.gathers(spp_));
     renderPass(1);
     spp_ += 1;
-    // Training iterations of doubling length (cms.md §7; cms/training_schedule.h): the cells are
-    // solved, then the pixel estimate of the relative weights is refreshed.
+    // Training iterations of doubling length (docs/estimator.md §7; cms/training_schedule.h): the
+    // cells are solved, then the pixel estimate of the relative weights is refreshed.
     if (schedule_.solvesAfter(spp_)) {
       cms_->solveAll();
       if (settings_.relativeWeighting) cms_->refreshPixelEstimate(filmMeans(), settings_.width, settings_.height);

@@ -20,13 +20,14 @@ struct RenderSettings {
   bool generalPipelines = false;         // Vulkan: ignore the feature set (testing aid)
   uint32_t maxPathsPerChunk = 1u << 20;  // Vulkan: the wavefront's width; larger images go in chunks
   uint32_t threads = 0;                  // CPU: worker threads, 0 = one per core
-  // Controlled mixture sampling (methods learned, cv, cms; ../shared/cms.md).
+  // Controlled mixture sampling (methods learned, cv, cms; docs/estimator.md).
   CmsMethod cms;
   uint32_t cells = 16;           // cells along the scene's longest axis (times 6 normal classes)
   uint32_t minCellSamples = 64;  // a cell's coefficients are trusted from this many vertices on
   float ridge = 1e-3f;           // Tikhonov term of the solve, relative to the scaled diagonal
   float defensive = 0.2f;        // share of the default selection in a learned c_k
-  bool relativeWeighting = true; // statistics weighted by throughput relative to the pixel (cms.md §5)
+  bool relativeWeighting = true; // statistics weighted by throughput relative to the pixel
+                                 // (docs/estimator.md §5)
   bool floatAtomics = true;      // Vulkan: float atomics for the statistics where the device has them
   uint32_t trainSpp = 0;         // no solve after this many samples (0 = train through the first half)
 };

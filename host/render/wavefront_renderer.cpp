@@ -236,7 +236,7 @@ void WavefrontRenderer::renderSamples(uint32_t count) {
       for (uint32_t offset = 0; offset < pixelCount_; offset += pathCount_)
         recordSample(cmd_, spp_ + s, offset, std::min(pathCount_, pixelCount_ - offset), gathering);
       gatheringSamples_ += gathering;
-      // Training iterations of doubling length (cms.md §7; cms/training_schedule.h).
+      // Training iterations of doubling length (docs/estimator.md §7; cms/training_schedule.h).
       if (solver_ && schedule_.solvesAfter(spp_ + s + 1)) recordSolve(cmd_, true);
     }
     vkCheck(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");

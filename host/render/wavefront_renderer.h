@@ -36,7 +36,6 @@ class WavefrontRenderer : public Renderer {
   RenderCounters counters() const override;
   std::map<std::string, double> passTimesMs() const override { return timer_.totalsMs(); }
   std::string deviceName() const override;
-  uint32_t pathsPerChunk() const { return pathCount_; }
 
   // CMS: the cells as they are now (for tests and debug views). Empty for the other methods.
   struct CmsCellState {

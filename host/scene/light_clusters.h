@@ -1,6 +1,6 @@
 #pragma once
 // Groups a scene's lights into at most maxClusters light clusters: the sampling techniques of
-// controlled mixture sampling (../shared/cms.md §2), one technique and one control-variate
+// controlled mixture sampling (docs/estimator.md §2), one technique and one control-variate
 // coefficient per cluster. This file only builds the grouping; sampling from it lives elsewhere.
 //
 // Rules

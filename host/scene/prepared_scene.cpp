@@ -33,7 +33,6 @@ PreparedScene prepareScene(Scene scene, LightSelection selection) {
     p.texels.insert(p.texels.end(), t.texels.begin(), t.texels.end());
     p.textures.push_back(g);
   }
-  p.sceneRadius = std::max(0.5f * glm::length(scene.bounds.extent()), 1e-6f);
   p.scene = std::move(scene);
   return p;
 }

@@ -21,7 +21,6 @@ struct PreparedScene {
   std::vector<shared::TriangleShading> shading;  // BVH order
   std::vector<shared::TextureGpu> textures;
   std::vector<uint32_t> texels;
-  float sceneRadius = 1.0f;
 };
 
 PreparedScene prepareScene(Scene scene, LightSelection selection);

@@ -1,7 +1,6 @@
 #pragma once
 // The renderer's scene: what the glTF loader produces and everything downstream (lights, BVH,
 // upload, CPU code) reads. Geometry is flattened to world-space triangles.
-#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -22,11 +21,6 @@ struct Bounds {
   bool valid() const { return min.x <= max.x && min.y <= max.y && min.z <= max.z; }
   glm::vec3 center() const { return 0.5f * (min + max); }
   glm::vec3 extent() const { return max - min; }
-  // The largest absolute coordinate: the scale of the rounding errors of positions in the scene.
-  float magnitude() const {
-    glm::vec3 m = glm::max(glm::abs(min), glm::abs(max));
-    return valid() ? std::max(m.x, std::max(m.y, m.z)) : 1.0f;
-  }
 };
 
 // One flattened world-space triangle.

@@ -1,6 +1,5 @@
 #include "vulkan/context.h"
 
-#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -198,10 +197,6 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   physical_ = devices[chosen];
   vkGetPhysicalDeviceProperties(physical_, &properties_);
   queueFamily_ = uint32_t(computeQueueFamily(physical_, &timestampValidBits_, surface_));
-  VkPhysicalDeviceMemoryProperties mem;
-  vkGetPhysicalDeviceMemoryProperties(physical_, &mem);
-  for (uint32_t i = 0; i < mem.memoryHeapCount; ++i)
-    if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) deviceLocalBytes_ = std::max<uint64_t>(deviceLocalBytes_, mem.memoryHeaps[i].size);
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -46,7 +46,6 @@ class VulkanContext {
   double timestampPeriodNs() const { return properties_.limits.timestampPeriod; }
   bool timestampsSupported() const { return timestampValidBits_ > 0; }
   uint64_t maxStorageBufferRange() const { return properties_.limits.maxStorageBufferRange; }
-  uint64_t deviceLocalBytes() const { return deviceLocalBytes_; }
   // VK_EXT_shader_atomic_float's shaderBufferFloat32AtomicAdd, enabled (when present and not
   // disabled by ContextOptions::floatAtomics); without it the pipelines that gather CMS
   // statistics add them with compare-and-swap loops, and no pipeline may use the capability.
@@ -73,7 +72,6 @@ class VulkanContext {
   uint32_t queueFamily_ = 0;
   uint32_t timestampValidBits_ = 0;
   bool floatAtomics_ = false;
-  uint64_t deviceLocalBytes_ = 0;
   VkCommandPool commandPool_ = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties_{};
 };

@@ -1,5 +1,5 @@
-// Adding one sample's terms to its cell's statistics (cms.md §4): with p = (.., p_k, .., p_B)
-// and the mixture density p_eff, A_ij += w p_i p_j / p_eff^2 and b_i += w f p_i / p_eff^2.
+// Adding one sample's terms to its cell's statistics (docs/estimator.md §4): with p = (.., p_k, ..,
+// p_B) and the mixture density p_eff, A_ij += w p_i p_j / p_eff^2 and b_i += w f p_i / p_eff^2.
 // Clusters are disjoint, so a sample touches only A_kk, A_kB, A_BB, b_k and b_B. Float atomics:
 // many vertices of one cell add at once. Included by the shade and shadow stages, after
 // gpu/buffers.glsl and gpu/cms_buffers.glsl.
@@ -17,9 +17,9 @@ bool gatheringStatistics(uint cell) {
   return passGathersStatistics() && cellSamples[cell] < kCellSampleCap;
 }
 
-// The weight of a sample of `path`'s vertex with throughput `beta` in its cell (cms.md §5): relative
-// to the estimate of the path's pixel made at the start of this iteration (shared/pixel_estimate.h),
-// or 1 (--relative-weighting off); 0 while not gathering.
+// The weight of a sample of `path`'s vertex with throughput `beta` in its cell (docs/estimator.md
+// §5): relative to the estimate of the path's pixel made at the start of this iteration
+// (shared/pixel_estimate.h), or 1 (--relative-weighting off); 0 while not gathering.
 float sampleWeight(vec3 beta, uint path, uint cell) {
   if (!gatheringStatistics(cell)) return 0.0;
   return CMS_RELATIVE_WEIGHT ? relativeSampleWeight(beta, pixelEstimate[pc.pixelOffset + path]) : 1.0;

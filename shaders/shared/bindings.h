@@ -52,7 +52,7 @@
 #define SPEC_SINGLE_LIGHT 4
 #define SPEC_CMS_SELECTION 5         // lights chosen through per-cell cluster selection (learned, cv, cms)
 #define SPEC_CMS_CONTROL_VARIATE 6   // the control variate (cv, cms)
-#define SPEC_CMS_RELATIVE_WEIGHT 7   // statistics weighted by relative throughput (cms.md §5)
+#define SPEC_CMS_RELATIVE_WEIGHT 7   // relative-throughput statistics weights (docs/estimator.md §5)
 #define SPEC_COUNT 8
 
 #endif

@@ -1,7 +1,7 @@
-// The spatial cells that share one control variate (cms.md §5, §7): a hashed sparse grid keyed by
-// position (cells along the longest scene axis set by --cells), by the dominant axis of the
-// geometric normal (6 classes), so a floor and the wall beside it never share coefficients, and by
-// the material, so a mirror and a rough surface next to it (whose integrands differ most) never
+// The spatial cells that share one control variate (docs/estimator.md §5, §7): a hashed sparse grid
+// keyed by position (cells along the longest scene axis set by --cells), by the dominant axis of
+// the geometric normal (6 classes), so a floor and the wall beside it never share coefficients, and
+// by the material, so a mirror and a rough surface next to it (whose integrands differ most) never
 // do either.
 // Open addressing with linear probing; a slot is claimed with a 64-bit compare-and-swap. When no
 // free slot is found within kCellProbes, the vertex gets no cell: it then simply uses no control

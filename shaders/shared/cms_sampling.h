@@ -1,7 +1,8 @@
-// Light sampling through clusters, the techniques of controlled mixture sampling (cms.md §2):
-// a cluster k from the cell's selection pmf c_k (learned, or the defaults), a light inside it with
-// its fixed pmf, then a point on it (lights.h). p_k(z) is the density of the last two steps, so
-// the mixture density of a light sample is sum_k c_k p_k(z) = c_k p_k(z) (clusters are disjoint).
+// Light sampling through clusters, the techniques of controlled mixture sampling (docs/estimator.md
+// §2): a cluster k from the cell's selection pmf c_k (learned, or the defaults), a light inside it
+// with its fixed pmf, then a point on it (lights.h). p_k(z) is the density of the last two steps,
+// so the mixture density of a light sample is sum_k c_k p_k(z) = c_k p_k(z) (clusters are
+// disjoint).
 //
 // The includer defines, besides the accessors of lights.h: CLUSTER(i) -> ClusterGpu,
 // CLUSTER_LIGHT(i) -> ClusterLightGpu, CELL_SOLUTION(i) -> float (the solve pass's output) and

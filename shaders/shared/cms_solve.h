@@ -1,14 +1,14 @@
-// The per-cell solve of controlled mixture sampling (../shared/cms.md §4, §6, §7), in float, as
+// The per-cell solve of controlled mixture sampling (docs/estimator.md §4, §6, §7), in float, as
 // the solve pass runs it (shaders/cms/solve.comp, one invocation per cell). The double-precision
 // reference (host/cms/reference_solve.cpp) implements the same rules independently and shares
 // only the policy constants below.
 //
-// Rules, per cell (each keeps the estimator unbiased: any alpha is, cms.md §6):
+// Rules, per cell (each keeps the estimator unbiased: any alpha is, docs/estimator.md §6):
 //   - A technique whose diagonal entry is not a positive normal float, or whose row holds a NaN or
 //     Inf (A_kk, A_kB, b_k for a cluster; A_BB, b_B for the BSDF technique), has no usable samples
 //     and is dropped from the system: its alpha is 0.
-//   - Ridge (cms.md §6): r = ridge * the mean diagonal entry of the techniques in the system is
-//     added to every diagonal entry. Proportional to the trace, it shrinks the alpha of a technique
+//   - Ridge (docs/estimator.md §6): r = ridge * the mean diagonal entry of the techniques in the
+//     system is added to every diagonal entry. Proportional to the trace, it shrinks the alpha of a technique
 //     with few samples (A_kk << the others: a cluster a rarely chosen light sample or a stray BSDF
 //     hit reached) towards 0, where a ridge relative to each technique's own diagonal would not: a
 //     cluster with A_kk ~ 1e-9 otherwise gets alpha_k ~ -A_kB alpha_B / A_kk, and its light samples
@@ -34,8 +34,8 @@
 //     the same system. A and b depend on the selection through p_eff, so when the new selection
 //     differs from the one the cell used so far by more than kSelectionChangeThreshold in total
 //     variation (or the cell had no valid selection yet), the cell adopts it and its statistics
-//     and sample count are reset (cms.md §7); otherwise, and while the cell is unsolved, it keeps
-//     the old selection and its statistics keep accumulating. With fixed defaults (no
+//     and sample count are reset (docs/estimator.md §7); otherwise, and while the cell is unsolved,
+//     it keeps the old selection and its statistics keep accumulating. With fixed defaults (no
 //     kSolveLearnSelection) a cell never resets. A non-finite alpha also resets the statistics.
 // Every output is finite for any input.
 #ifndef MIXTRACE_SHARED_CMS_SOLVE_H

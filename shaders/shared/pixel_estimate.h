@@ -1,7 +1,7 @@
-// The pixel values that the relative weights of the CMS statistics divide by (cms.md §5). The
-// paper divides by a denoised image; we take, per channel, the largest running mean within a small
-// window. A noisy per-pixel mean fails in the worst way: a pixel beside a highlight whose few
-// samples all missed it looks black, its vertices get the largest weight, and the highlight's
+// The pixel values that the relative weights of the CMS statistics divide by (docs/estimator.md
+// §5). The paper divides by a denoised image; we take, per channel, the largest running mean within
+// a small window. A noisy per-pixel mean fails in the worst way: a pixel beside a highlight whose
+// few samples all missed it looks black, its vertices get the largest weight, and the highlight's
 // integrand, seen from them, dominates their cell's coefficients; the cell's dark majority then
 // pays a control variate fitted to the highlight. The window maximum never underestimates a pixel
 // next to a bright one. Any weight keeps the estimator unbiased; this one only steers alpha.

@@ -6,9 +6,10 @@
 //
 // With controlled mixture sampling (CMS_SELECTION: methods learned, cv, cms) the light comes from
 // a cluster chosen by the vertex's cell, p_eff = c_k p_k + p_B, and every sample adds its terms
-// of A and b to the cell (cms.md §4); with CMS_CONTROL_VARIATE (cv, cms) the vertex also pays the
-// control variate: + sum(alpha) - g(z)/p_eff(z) for both samples (cms.md §3). The BSDF sample's
-// terms depend on what it hits, so they are paid at the start of the next depth's shade.
+// of A and b to the cell (docs/estimator.md §4); with CMS_CONTROL_VARIATE (cv, cms) the vertex also
+// pays the control variate: + sum(alpha) - g(z)/p_eff(z) for both samples (docs/estimator.md §3).
+// The BSDF sample's terms depend on what it hits, so they are paid at the start of the next depth's
+// shade.
 #include "gpu/buffers.glsl"
 #include "gpu/cms_buffers.glsl"
 #include "gpu/cms_statistics.glsl"
@@ -128,7 +129,7 @@ void main() {
       if (!(ls.pdf > 0.0)) {
         // A point with no solid-angle density from here (in this surface's plane, e.g. a light
         // sampling itself) is a hidden point: p_B = 0 there, and with p_k in the light's own area
-        // measure the terms only need ratios, so any positive p_k does (cms.md §1).
+        // measure the terms only need ratios, so any positive p_k does (docs/estimator.md §1).
         above = false;
         carries = false;
         pk = 1.0;
@@ -181,7 +182,7 @@ void main() {
   vec3 wiWorld = toWorld(frame, wiLocal);
   if (!sampled || !(dot(wiWorld, sh.geometricNormal) > 0.0)) {
     // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
-    // (cms.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
+    // (docs/estimator.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
     if (cv) radiance[path] -= beta * cellAlphaB(cell, L);
     if (CMS_SELECTION && cell != kNoCell && passGathersStatistics())
       addStat(cell, statsABB(L), sampleWeight(beta, path, cell));

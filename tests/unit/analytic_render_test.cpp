@@ -8,8 +8,7 @@
 //   SphereLight         a plane lit directly by a small tessellated spherical light
 //
 // Every check also runs against the expectation scaled by 0.95 and 1.05 and must reject it:
-// the test demonstrably has the power to see a 5% bias. Each case runs on both backends; the CPU
-// cases skip while `render --backend cpu` reports that backend as not available.
+// the test demonstrably has the power to see a 5% bias. Each case runs on both backends.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -144,7 +143,6 @@ TEST_P(WhiteFurnace, MatchesTheSphereRecursion) {
   s.method = c.method;
   s.backend = c.backend;
   const RenderedImage img = renderWithVariance(scene, s, scene.parent_path() / "furnace.exr");
-  if (img.backendUnavailable && s.backend == "cpu") GTEST_SKIP() << "the cpu backend is not available yet";
   ASSERT_TRUE(img.error.empty()) << img.error;
 
   // From the centre, a pixel ray meets the flat facet at the cosine of its angle to the facet
@@ -271,7 +269,6 @@ TEST_P(PlaneUnderEmitter, MatchesTheDirectLightingIntegral) {
 
   const RenderSettings s = directSettings(c);
   const RenderedImage img = renderWithVariance(scene, s, scene.parent_path() / "plane.exr");
-  if (img.backendUnavailable && s.backend == "cpu") GTEST_SKIP() << "the cpu backend is not available yet";
   ASSERT_TRUE(img.error.empty()) << img.error;
 
   std::vector<Tri> emitter = emitterA;
@@ -332,7 +329,6 @@ TEST_P(SphereLight, MatchesTheIrradianceOfItsTriangles) {
 
   const RenderSettings s = directSettings(c);
   const RenderedImage img = renderWithVariance(scene, s, scene.parent_path() / "sphere_light.exr");
-  if (img.backendUnavailable && s.backend == "cpu") GTEST_SKIP() << "the cpu backend is not available yet";
   ASSERT_TRUE(img.error.empty()) << img.error;
 
   // The light's front faces tile its silhouette once (it is convex), so summing over all its

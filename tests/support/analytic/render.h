@@ -1,7 +1,6 @@
 #pragma once
 // Renders a test scene with the real mixtrace binary and reads back the mean and the variance of
-// the mean. A backend that the binary reports as not available (the CPU backend while it is
-// being written) is reported as such, so the caller can skip instead of failing.
+// the mean.
 #include <filesystem>
 #include <string>
 
@@ -22,7 +21,6 @@ struct RenderSettings {
 };
 
 struct RenderedImage {
-  bool backendUnavailable = false;
   std::string error;  // non-empty: the render failed (exit code and stderr)
   Image mean;
   Image variance;
@@ -36,7 +34,6 @@ inline RenderedImage renderWithVariance(const std::filesystem::path& scene, cons
                                     std::to_string(s.maxDepth) + " --method " + s.method + " --backend " + s.backend +
                                     " --seed " + std::to_string(s.seed) + " --variance -q --no-png --out " + out.string());
   if (run.exitCode != 0) {
-    result.backendUnavailable = run.stderrText.find("not available") != std::string::npos;
     result.error = "exit code " + std::to_string(run.exitCode) + ": " + run.stderrText;
     return result;
   }
