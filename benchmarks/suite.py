@@ -6,7 +6,7 @@
 For each scene and each method (pt-uniform, pt-power, learned, cv, cms) it renders at equal
 samples per pixel and at equal time (every method gets pt-uniform's render time) against a
 high-spp reference (rendered by mixtrace's CPU backend, cached in benchmarks/cache/ and rendered
-again when the scene or the binary changes), and reports relMSE (cms.md section 8), spp
+again when the scene or the binary changes), and reports relMSE (docs/estimator.md section 8), spp
 reached, time per sample and the overhead per sample relative to pt-uniform, in the form of the
 paper's table. Charts: relMSE against time (log-log, one line per method), GPU time per sample
 by pass group (where the overhead goes), and a false-colour relative-error image per method at

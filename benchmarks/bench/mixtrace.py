@@ -39,7 +39,7 @@ class Mixtrace:
             return json.load(f)
 
     def rel_mse(self, image, reference, error_map=None):
-        """relMSE (cms.md section 8) of `image` against `reference`; optionally writes the per-pixel
+        """relMSE (docs/estimator.md section 8) of `image` against `reference`; optionally writes the per-pixel
         terms as a PFM error map."""
         cmd = [self.binary, "compare", image, reference, "--error-only"]
         if error_map:

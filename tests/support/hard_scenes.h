@@ -1,6 +1,6 @@
 #pragma once
 // Small glTF scenes built at test time that stress the numerics of light sampling and of the
-// CMS statistics and solve (shared/cms.md §6): light powers over eight orders of magnitude, a
+// CMS statistics and solve (docs/estimator.md §6): light powers over eight orders of magnitude, a
 // light that only a few cells can reach, degenerate and tiny emitters, near-mirrors next to small
 // lights, and one room at very small and very large scale. Every scene is a closed room (no
 // escaping paths) seen from inside; the builders return the glTF text.

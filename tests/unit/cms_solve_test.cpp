@@ -175,7 +175,7 @@ CellSolver* CmsSolve::solver_ = nullptr;
 // ---------------------------------------------------------------------------------------------
 // Synthetic statistics
 
-// Statistics gathered the way the shade pass gathers them (cms.md §4): per vertex one light
+// Statistics gathered the way the shade pass gathers them (docs/estimator.md §4): per vertex one light
 // sample (a cluster picked uniformly among `reached`) and one BSDF sample (hitting a reached
 // cluster or nothing), each adding p p^T / p_eff^2 to A. Random densities make A SPD and well
 // conditioned after Jacobi scaling. b = A alpha_true, so alpha_true is the exact solution.
@@ -799,7 +799,7 @@ TEST_F(CmsSolve, MinimumSampleThreshold) {
 }
 
 // Diagonal cells (B absent, A_kk = 1, b_k = alpha_k) so alpha is known exactly and the selection
-// can be checked against the formula of cms.md §7 directly.
+// can be checked against the formula of docs/estimator.md §7 directly.
 TEST_F(CmsSolve, LearnedSelection) {
   const uint32_t L = 4;
   auto diagonalCell = [&](const std::vector<glm::vec3>& alpha) {
