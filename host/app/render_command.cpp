@@ -68,17 +68,18 @@ int runRender(const RenderOptions& o) {
   const OutputPlan outputs = planRenderOutputs(o, scenePath);
 
   auto setupStart = Clock::now();
+  // The device next, before the scene: a wrong --device must not cost loading a large scene.
+  std::unique_ptr<VulkanContext> ctx;
+  if (o.backend != "cpu") ctx = std::make_unique<VulkanContext>(ContextOptions{o.device, o.validation});
   MethodSetup setup = setUpMethod(loadSceneForRendering(scenePath, o), o, o.method);
   const PreparedScene& prepared = setup.prepared;
   const RenderSettings& settings = setup.settings;
   const CmsScene& cms = setup.cms;
   const std::string& estimator = setup.estimator;
-  std::unique_ptr<VulkanContext> ctx;
   std::unique_ptr<Renderer> backend;
   if (o.backend == "cpu") {
     backend = std::make_unique<CpuRenderer>(prepared, settings, setup.clusters());
   } else {
-    ctx = std::make_unique<VulkanContext>(ContextOptions{o.device, o.validation});
     backend = std::make_unique<WavefrontRenderer>(*ctx, prepared, settings, setup.clusters());
   }
   Renderer& renderer = *backend;

@@ -101,5 +101,16 @@ TEST(DeviceChoice, RenderRefusesAnIndexOutOfRange) {
   expectMentions(r.stderrText, "mixtrace: error: --device 1: no device with that index");
 }
 
+// The device is chosen before the scene is loaded: a wrong --device costs no loading (no
+// scene or method line comes before the error).
+TEST(DeviceChoice, AWrongDeviceIsRefusedBeforeTheSceneIsLoaded) {
+  const testing::RunResult r = testing::runMixtrace(
+      "render --device 1 --spp 1 --width 4 --height 4 --out " +
+      (std::filesystem::temp_directory_path() / "mixtrace_device_first.exr").string());
+  EXPECT_EQ(r.exitCode, 1);
+  ASSERT_EQ(r.stderrLines().size(), 1u) << r.stderrText;
+  expectMentions(r.stderrText, "mixtrace: error: --device 1");
+}
+
 }  // namespace
 }  // namespace mixtrace
