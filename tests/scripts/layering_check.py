@@ -2,7 +2,7 @@
 """Each folder of host/ is a layer; a layer may include only the layers below it.
 
 The table below is the one statement of that order (CMakeLists.txt builds one library per row,
-linking the rows it names). A file that includes a header of a folder not on its row, or a
+and each links only libraries of the rows this one names). A file that includes a header of a folder not on its row, or a
 folder missing from the table, fails the check: a new dependency upward is a design change to
 make here on purpose, not by accident. `shared/` (shaders/shared, the headers C++ and GLSL both
 compile) lies below every layer.
