@@ -7,7 +7,7 @@
 #include <new>
 
 #include "app/compare_command.h"
-#include "app/options.h"
+#include "session/options.h"
 #include "app/render_command.h"
 #include "util/error.h"
 #include "viewer/viewer.h"

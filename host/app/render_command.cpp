@@ -7,9 +7,10 @@
 #include <filesystem>
 #include <memory>
 
-#include "app/method_setup.h"
-#include "app/output_plan.h"
-#include "app/scene_camera.h"
+#include "session/default_scene.h"
+#include "session/method_setup.h"
+#include "session/output_plan.h"
+#include "session/scene_camera.h"
 #include "app/stop_on_signal.h"
 #include "output/render_output.h"
 #include "output/render_stats.h"
@@ -49,17 +50,6 @@ void warnIfBlack(const Image& image, const PreparedScene& prepared) {
 }
 
 }  // namespace
-
-std::string defaultScenePath() {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  for (fs::path candidate : {fs::path(MIXTRACE_SOURCE_DIR) / "scenes/cornell_box.gltf",
-                             exe.parent_path() / "../scenes/cornell_box.gltf",
-                             exe.parent_path() / "../share/mixtrace/scenes/cornell_box.gltf"})
-    if (fs::exists(candidate, ec)) return candidate.string();
-  throw Error("no scene given and the default scene scenes/cornell_box.gltf was not found");
-}
 
 int runRender(const RenderOptions& o) {
   setQuiet(o.quiet);

@@ -8,7 +8,7 @@
 #include "shared/display.h"
 #include "util/error.h"
 
-// libtinygltf imports the stb writer from libstb.so rather than exporting it, and mixtrace_core
+// libtinygltf imports the stb writer from libstb.so rather than exporting it, and the output layer
 // does not link libstb, so the writer is compiled here — static, so it cannot clash with the
 // copy in libstb.so that tinygltf loads.
 #define STB_IMAGE_WRITE_IMPLEMENTATION

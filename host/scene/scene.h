@@ -58,7 +58,7 @@ struct Camera {
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float yfov = 0.8f;        // vertical field of view, radians
   bool fromFile = false;    // false: framed from the scene bounds (defaultFraming); true: set by the
-                            // file or on the command line (--look-from, ...: app/scene_camera.h)
+                            // file or on the command line (--look-from, ...: session/scene_camera.h)
 };
 
 struct Scene {

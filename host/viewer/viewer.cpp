@@ -9,10 +9,10 @@
 #include <map>
 #include <memory>
 
-#include "app/method_setup.h"
-#include "app/output_plan.h"
-#include "app/render_command.h"
-#include "app/scene_camera.h"
+#include "session/default_scene.h"
+#include "session/method_setup.h"
+#include "session/output_plan.h"
+#include "session/scene_camera.h"
 #include "output/png_preview.h"
 #include "output/render_output.h"
 #include "render/wavefront_renderer.h"

@@ -6,7 +6,7 @@
 // (viewer/input.h) so the viewer can be tested headless under Xvfb.
 #include <string>
 
-#include "app/options.h"
+#include "session/options.h"
 
 namespace mixtrace {
 

@@ -11,7 +11,12 @@ struct EmbeddedShader {
   size_t sizeBytes;
 };
 
-// nullptr when no shader of that name was built.
+// nullptr when no shader of that name was built: searches the product's table, then every
+// registered one.
 const EmbeddedShader* findEmbeddedShader(const char* name);
+
+// Adds a table, ended by an entry with a null name, for findEmbeddedShader to search: the test
+// kernels' (shaders/tests), which only tests link, register theirs at static initialisation.
+void registerEmbeddedShaders(const EmbeddedShader* table);
 
 }  // namespace mixtrace

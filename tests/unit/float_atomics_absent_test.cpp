@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "app/options.h"
+#include "session/options.h"
 #include "support/run_binary.h"
 #include "vulkan/context.h"
 

@@ -1,5 +1,5 @@
 // Command-line parsing: defaults, both value syntaxes, every error class, help and version.
-#include "app/options.h"
+#include "session/options.h"
 
 #include <gtest/gtest.h>
 

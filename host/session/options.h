@@ -23,7 +23,7 @@ constexpr int kDefaultSpp = 16;
 
 // A camera set on the command line, as pbrt's LookAt and Mitsuba's sensor do (--look-from,
 // --look-at, --up, --fov). Each value given replaces that part of the camera the scene would
-// otherwise use (the file's, or the default framing); app/scene_camera.h combines them.
+// otherwise use (the file's, or the default framing); session/scene_camera.h combines them.
 struct CameraOptions {
   std::optional<std::array<double, 3>> lookFrom, lookAt, up;
   std::optional<double> fovDegrees;   // vertical field of view, in (0, 180)

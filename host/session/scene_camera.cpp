@@ -1,4 +1,4 @@
-#include "app/scene_camera.h"
+#include "session/scene_camera.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "app/options.h"
+#include "session/options.h"
 
 #include <cctype>
 #include <cerrno>
@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "compare/image_compare.h"
-#include "app/scene_camera.h"
+#include "session/scene_camera.h"
 #include "util/error.h"
 
 namespace mixtrace {

@@ -1,9 +1,9 @@
-#include "app/output_plan.h"
+#include "session/output_plan.h"
 
 #include <filesystem>
 #include <vector>
 
-#include "app/scene_files.h"
+#include "session/scene_files.h"
 #include "output/output_paths.h"
 #include "output/render_output.h"
 #include "util/error.h"

@@ -1,4 +1,4 @@
-#include "app/scene_files.h"
+#include "session/scene_files.h"
 
 #include <cctype>
 #include <cstdint>

@@ -6,7 +6,7 @@
 
 #include <glm/glm.hpp>
 
-#include "app/options.h"
+#include "session/options.h"
 #include "scene/scene.h"
 
 namespace mixtrace {

@@ -4,7 +4,7 @@
 // clusters. Shared by `render` and `view` (which sets up one per method it shows).
 #include <string>
 
-#include "app/options.h"
+#include "session/options.h"
 #include "cms/cms_setup.h"
 #include "render/renderer.h"
 #include "scene/prepared_scene.h"

@@ -4,7 +4,7 @@
 // same file and none of them the scene or a file it reads.
 #include <string>
 
-#include "app/options.h"
+#include "session/options.h"
 
 namespace mixtrace {
 

@@ -1,4 +1,4 @@
-#include "app/method_setup.h"
+#include "session/method_setup.h"
 
 #include "util/log.h"
 

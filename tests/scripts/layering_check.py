@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Each folder of host/ is a layer; a layer may include only the layers below it.
+
+The table below is the one statement of that order (CMakeLists.txt builds one library per row,
+and each links only libraries of the rows this one names). A file that includes a header of a folder not on its row, or a
+folder missing from the table, fails the check: a new dependency upward is a design change to
+make here on purpose, not by accident. `shared/` (shaders/shared, the headers C++ and GLSL both
+compile) lies below every layer.
+
+Usage: layering_check.py SOURCE_DIR
+"""
+import pathlib
+import re
+import sys
+
+# folder: the folders (or single headers, "folder/file.h") its files may include, lowest first.
+# Two single headers are allowed across a boundary until their own folders are split:
+#   bvh -> scene/scene.h: the BVH is built over the scene model (scene/ also holds the prepared
+#     scene, which holds the BVH);
+#   cpu -> render/renderer.h: the backend interface (RenderSettings, Renderer) both backends
+#     implement, which lives beside the Vulkan one.
+LAYERS = {
+    "util":    [],
+    "vulkan":  ["util"],
+    "bvh":     ["util", "scene/scene.h"],
+    "scene":   ["util", "bvh"],
+    "output":  ["util"],
+    "compare": ["util", "output"],
+    "cms":     ["util", "vulkan", "scene"],
+    "render":  ["util", "vulkan", "scene", "output", "cms"],
+    "cpu":     ["util", "scene", "output", "cms", "render/renderer.h"],
+    "session": ["util", "scene", "output", "compare", "cms", "render", "cpu"],
+    "viewer":  ["util", "vulkan", "scene", "output", "cms", "render", "session"],
+    "app":     ["util", "vulkan", "scene", "output", "compare", "cms", "render", "cpu", "session", "viewer"],
+}
+BELOW_ALL = {"shared"}
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+
+
+def allowed(layer, header):
+    folder = header.split("/", 1)[0]
+    if "/" not in header or folder == layer or folder in BELOW_ALL:
+        return True  # a same-folder or generated header (e.g. "intersect.spv.h")
+    rules = LAYERS[layer]
+    return folder in rules or header in rules
+
+
+def main():
+    host = pathlib.Path(sys.argv[1]) / "host"
+    failures = []
+    for path in sorted(host.rglob("*")):
+        if path.suffix not in {".h", ".cpp", ".inc", ".in"} or not path.is_file():
+            continue
+        layer = path.relative_to(host).parts[0]
+        if layer not in LAYERS:
+            failures.append(f"host/{layer}/: a folder the layer table does not know (add it to {__file__})")
+            continue
+        for number, line in enumerate(path.read_text().splitlines(), 1):
+            match = INCLUDE.match(line)
+            if match and not allowed(layer, match.group(1)):
+                failures.append(f"{path.relative_to(host.parent)}:{number}: {layer}/ includes {match.group(1)}, "
+                                f"which is not below it")
+    for failure in sorted(set(failures)):
+        print("layering: FAIL:", failure)
+    if not failures:
+        print(f"layering: every include of host/ goes down the table ({len(LAYERS)} layers)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
