@@ -3,12 +3,14 @@
 // leaf when it holds one triangle, or at most kBvhMaxLeafSize and splitting would cost more than
 // testing them all. A median split takes over where SAH cannot split (all centroids in one
 // point) and where the depth budget demands it.
+//
+// The result is the plain host-side tree of bvh_build.h; the layouts the traversals walk are made
+// from it afterwards (bvh_gpu_layout.cpp).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <string>
 
-#include "bvh/bvh.h"
+#include "bvh/bvh_build.h"
 #include "util/error.h"
 
 namespace mixtrace {
@@ -69,7 +71,7 @@ struct SahSplit {
 
 class BinnedSahBuilder {
  public:
-  BinnedSahBuilder(const std::vector<Triangle>& triangles, Bvh& out)
+  BinnedSahBuilder(const std::vector<Triangle>& triangles, BvhTree& out)
       : out_(out), bounds_(triangles.size()), centroids_(triangles.size()) {
     for (size_t i = 0; i < triangles.size(); ++i) {
       for (const glm::vec3& p : triangles[i].p) bounds_[i].grow(p);
@@ -98,10 +100,10 @@ class BinnedSahBuilder {
       nodeBounds.grow(bounds_[t]);
       centroidBounds.grow(centroids_[t]);
     }
-    shared::BvhNode& node = out_.nodes[nodeIndex];  // reserve() above: never reallocated
+    BvhBuildNode& node = out_.nodes[nodeIndex];  // reserve() above: never reallocated
     const float pad = boundsPadding(nodeBounds);
-    node.boundsMin = nodeBounds.min - pad;
-    node.boundsMax = nodeBounds.max + pad;
+    node.bounds.min = nodeBounds.min - pad;
+    node.bounds.max = nodeBounds.max + pad;
     out_.maxDepth = std::max(out_.maxDepth, depth);
 
     uint32_t leftCount = 0;  // 0: make a leaf
@@ -124,13 +126,14 @@ class BinnedSahBuilder {
     }
 
     if (leftCount == 0) {
-      node.leftOrFirst = first;
-      node.triCount = count;
+      node.firstTriangle = first;
+      node.triangleCount = count;
       return;
     }
     const uint32_t left = uint32_t(out_.nodes.size());
-    node.leftOrFirst = left;
-    node.triCount = 0;
+    node.left = left;
+    node.right = left + 1;
+    node.triangleCount = 0;
     out_.nodes.emplace_back();
     out_.nodes.emplace_back();
     subdivide(left, first, leftCount, depth + 1);
@@ -215,7 +218,7 @@ class BinnedSahBuilder {
     return half;
   }
 
-  Bvh& out_;
+  BvhTree& out_;
   std::vector<Bounds> bounds_;          // per input triangle
   std::vector<glm::vec3> centroids_;    // centre of the triangle's bounds
 };
@@ -233,34 +236,13 @@ void validate(const std::vector<Triangle>& triangles) {
   }
 }
 
-shared::TriangleGeom makeGeom(const Triangle& tri) {
-  shared::TriangleGeom g;
-  g.v0 = tri.p[0];
-  g.e1 = tri.p[1] - tri.p[0];
-  g.e2 = tri.p[2] - tri.p[0];
-  if (glm::cross(g.e1, g.e2) == glm::vec3(0.0f)) {
-    // No area, no normal: with zero edges the determinant is exactly 0 for every ray, so the
-    // traversal never reports it (a hit would only yield a NaN shading normal).
-    g.e1 = glm::vec3(0.0f);
-    g.e2 = glm::vec3(0.0f);
-  }
-  return g;
-}
-
 }  // namespace
 
-Bvh buildBvh(const std::vector<Triangle>& triangles) {
-  const auto start = std::chrono::steady_clock::now();
+BvhTree buildBvhTree(const std::vector<Triangle>& triangles) {
   validate(triangles);
-  Bvh bvh;
-  BinnedSahBuilder(triangles, bvh).build();
-  bvh.triangles.resize(triangles.size());
-  for (size_t i = 0; i < triangles.size(); ++i)
-    bvh.triangles[i] = makeGeom(triangles[bvh.triangleOrder[i]]);
-  bvh.nodes.shrink_to_fit();
-  bvh.buildSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return bvh;
+  BvhTree tree;
+  BinnedSahBuilder(triangles, tree).build();
+  return tree;
 }
 
 }  // namespace mixtrace

@@ -103,8 +103,13 @@ SHARED_FN bool bvhIntersectTriangle(TriangleGeom tri, vec3 origin, vec3 directio
   return t > 0.0f && t < tMax;
 }
 
-// Closest hit with 0 < t < tMax; triangle == kNoHit when nothing is hit (t is then tMax).
-SHARED_FN HitRecord traceClosest(vec3 origin, vec3 direction, float tMax) {
+// The one walk behind traceClosest and traceAny. With stopAtFirstHit it returns at the first
+// triangle hit with 0 < t < tMax (any hit will do: shadow rays), otherwise it keeps the closest.
+// Callers pass a constant, so the compiler folds the flag and each caller gets its own loop.
+// Until a hit, hit.t is tMax, so both searches test the same boxes in the same order; and every
+// box the any-hit search pushes starts before tMax * kBvhExitScale, so the pop test below
+// passes there and is skipped.
+SHARED_FN HitRecord bvhTraverse(vec3 origin, vec3 direction, float tMax, bool stopAtFirstHit) {
   HitRecord hit;
   hit.t = tMax;
   hit.triangle = kNoHit;
@@ -129,6 +134,7 @@ SHARED_FN HitRecord traceClosest(vec3 origin, vec3 direction, float tMax) {
           hit.triangle = i;
           hit.u = u;
           hit.v = v;
+          if (stopAtFirstHit) return hit;
         }
       }
     } else {
@@ -138,16 +144,14 @@ SHARED_FN HitRecord traceClosest(vec3 origin, vec3 direction, float tMax) {
       BvhNode farNode = BVH_NODE(farIndex);
       float nearEntry = bvhBoxEntry(nearNode.boundsMin, nearNode.boundsMax, origin, invDir, hit.t);
       float farEntry = bvhBoxEntry(farNode.boundsMin, farNode.boundsMax, origin, invDir, hit.t);
+      // Nearer first: the closest hit shrinks the search sooner, and blockers near the origin are
+      // found sooner on average.
       if (farEntry < nearEntry) {
-        BvhNode swapNode = nearNode;
         nearNode = farNode;
-        farNode = swapNode;
         float swapEntry = nearEntry;
         nearEntry = farEntry;
         farEntry = swapEntry;
-        uint swapIndex = nearIndex;
-        nearIndex = farIndex;
-        farIndex = swapIndex;
+        farIndex = nearIndex;
       }
       if (nearEntry < kBvhMiss) {
         if (farEntry < kBvhMiss) {
@@ -163,7 +167,7 @@ SHARED_FN HitRecord traceClosest(vec3 origin, vec3 direction, float tMax) {
     bool resumed = false;
     while (stackSize > 0u) {
       --stackSize;
-      if (stackEntry[stackSize] <= hit.t * kBvhExitScale) {
+      if (stopAtFirstHit || stackEntry[stackSize] <= hit.t * kBvhExitScale) {
         node = BVH_NODE(stack[stackSize]);
         resumed = true;
         break;
@@ -174,52 +178,14 @@ SHARED_FN HitRecord traceClosest(vec3 origin, vec3 direction, float tMax) {
   return hit;
 }
 
+// Closest hit with 0 < t < tMax; triangle == kNoHit when nothing is hit (t is then tMax).
+SHARED_FN HitRecord traceClosest(vec3 origin, vec3 direction, float tMax) {
+  return bvhTraverse(origin, direction, tMax, false);
+}
+
 // True when some triangle is hit with 0 < t < tMax (shadow rays); stops at the first one found.
 SHARED_FN bool traceAny(vec3 origin, vec3 direction, float tMax) {
-  vec3 invDir = bvhSafeReciprocal(direction);
-  BvhNode node = BVH_NODE(0u);
-  if (bvhBoxEntry(node.boundsMin, node.boundsMax, origin, invDir, tMax) >= kBvhMiss) return false;
-
-  uint stack[kBvhStackSize];
-  uint stackSize = 0u;
-  while (true) {
-    if (node.triCount > 0u) {
-      uint end = node.leftOrFirst + node.triCount;
-      for (uint i = node.leftOrFirst; i < end; ++i) {
-        float t = 0.0f;
-        float u = 0.0f;
-        float v = 0.0f;
-        if (bvhIntersectTriangle(BVH_TRIANGLE(i), origin, direction, tMax, t, u, v)) return true;
-      }
-    } else {
-      uint nearIndex = node.leftOrFirst;
-      uint farIndex = nearIndex + 1u;
-      BvhNode nearNode = BVH_NODE(nearIndex);
-      BvhNode farNode = BVH_NODE(farIndex);
-      float nearEntry = bvhBoxEntry(nearNode.boundsMin, nearNode.boundsMax, origin, invDir, tMax);
-      float farEntry = bvhBoxEntry(farNode.boundsMin, farNode.boundsMax, origin, invDir, tMax);
-      // Nearer first: blockers near the origin are found sooner on average.
-      if (farEntry < nearEntry) {
-        nearNode = farNode;
-        float swapEntry = nearEntry;
-        nearEntry = farEntry;
-        farEntry = swapEntry;
-        farIndex = nearIndex;
-      }
-      if (nearEntry < kBvhMiss) {
-        if (farEntry < kBvhMiss) {
-          stack[stackSize] = farIndex;
-          ++stackSize;
-        }
-        node = nearNode;
-        continue;
-      }
-    }
-    if (stackSize == 0u) break;
-    --stackSize;
-    node = BVH_NODE(stack[stackSize]);
-  }
-  return false;
+  return bvhTraverse(origin, direction, tMax, true).triangle != kNoHit;
 }
 
 SHARED_END_WITH_BUFFERS

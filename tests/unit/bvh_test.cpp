@@ -1,16 +1,20 @@
 // The BVH builder and the shared traversal against brute force over every triangle, on random
 // triangle soups and structured scenes at scales 1e-3 and 1e3, plus the structural invariants
-// the GPU relies on (permutation, containment, leaf size, depth).
+// the GPU relies on (permutation, containment, leaf size, depth) and the GPU layout's relation
+// to the layout-free tree it is flattened from (bvh_gpu_layout.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <limits>
 #include <random>
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "bvh/bvh_build.h"
+#include "bvh/bvh_gpu_layout.h"
 #include "util/error.h"
 
 // The traversal reads the BVH through these pointers, as a shader reads its storage buffers.
@@ -225,6 +229,20 @@ void checkStructure(const Bvh& bvh, const std::vector<Triangle>& input) {
     }
   }
   for (size_t i = 0; i < visits.size(); ++i) ASSERT_EQ(visits[i], 1) << "node " << i;
+  // The layout's node order: walking left subtrees first, the child pairs come in index order
+  // (1, 3, 5, ...), each allocated when its parent is written.
+  uint32_t nextPair = 1;
+  std::vector<uint32_t> preorder{0};
+  while (!preorder.empty()) {
+    const shared::BvhNode& node = bvh.nodes[preorder.back()];
+    preorder.pop_back();
+    if (node.triCount > 0) continue;
+    ASSERT_EQ(node.leftOrFirst, nextPair);
+    nextPair += 2;
+    preorder.push_back(node.leftOrFirst + 1);
+    preorder.push_back(node.leftOrFirst);
+  }
+  EXPECT_EQ(nextPair, bvh.nodes.size());
   for (size_t i = 0; i < n; ++i) ASSERT_EQ(owned[i], 1) << "BVH-order triangle " << i;
   EXPECT_EQ(deepest, bvh.maxDepth);
   EXPECT_LE(bvh.maxDepth, kBvhMaxDepth);
@@ -466,6 +484,100 @@ TEST(Bvh, ZeroAreaTrianglesAreNeverHit) {
   EXPECT_EQ(shared::traceClosest(vec3(1.0f, 0.0f, 1.0f), vec3(0.0f, 0.0f, -1.0f), kFloatMax).triangle, kNoHit);
   EXPECT_EQ(shared::traceClosest(vec3(0.5f, 0.5f, 1.0f), vec3(0.0f, 0.0f, -1.0f), kFloatMax).triangle, kNoHit);
   EXPECT_FALSE(shared::traceAny(vec3(0.5f, 0.5f, 1.0f), vec3(0.0f, 0.0f, -1.0f), kFloatMax));
+}
+
+// Bit for bit: the same floats and integers, so +0 and -0 or two NaNs are told apart.
+template <typename T>
+bool sameBytes(const T& a, const T& b) {
+  return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+// Every GPU node is its tree node: the same (padded) box bit for bit, the same leaf range, and
+// for an interior node its children at leftOrFirst and leftOrFirst + 1 are the tree node's left
+// and right child; every tree node appears once.
+void expectFlatteningOf(const BvhTree& tree, const std::vector<shared::BvhNode>& nodes) {
+  ASSERT_EQ(nodes.size(), tree.nodes.size());
+  std::vector<int> seen(tree.nodes.size(), 0);
+  std::vector<std::pair<uint32_t, uint32_t>> todo{{0u, 0u}};  // (tree node, GPU node)
+  while (!todo.empty()) {
+    auto [source, target] = todo.back();
+    todo.pop_back();
+    ASSERT_LT(source, tree.nodes.size());
+    ASSERT_LT(target, nodes.size());
+    ++seen[source];
+    const BvhBuildNode& from = tree.nodes[source];
+    const shared::BvhNode& to = nodes[target];
+    ASSERT_TRUE(sameBytes(to.boundsMin, from.bounds.min)) << "node " << target;
+    ASSERT_TRUE(sameBytes(to.boundsMax, from.bounds.max)) << "node " << target;
+    ASSERT_EQ(to.triCount, from.triangleCount) << "node " << target;
+    if (from.isLeaf()) {
+      ASSERT_EQ(to.leftOrFirst, from.firstTriangle) << "node " << target;
+    } else {
+      todo.push_back({from.left, to.leftOrFirst});
+      todo.push_back({from.right, to.leftOrFirst + 1});
+    }
+  }
+  for (size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "tree node " << i;
+}
+
+void expectSameArrays(const Bvh& a, const Bvh& b) {
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  ASSERT_EQ(a.triangles.size(), b.triangles.size());
+  EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(a.nodes[0])), 0);
+  EXPECT_EQ(std::memcmp(a.triangles.data(), b.triangles.data(),
+                        a.triangles.size() * sizeof(a.triangles[0])),
+            0);
+  EXPECT_EQ(a.triangleOrder, b.triangleOrder);
+  EXPECT_EQ(a.maxDepth, b.maxDepth);
+}
+
+std::vector<std::vector<Triangle>> layoutInputs() {
+  std::vector<Triangle> sameCentroid;  // median splits only
+  Random rng(31);
+  for (int i = 0; i < 300; ++i) {
+    vec3 a = rng.unitVector(), b = rng.unitVector();
+    sameCentroid.push_back(makeTriangle(a, b, -a - b));
+  }
+  return {randomSoup(4, 2000), roomScene(1.0f), sameCentroid,
+          {makeTriangle(vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f))}};
+}
+
+TEST(Bvh, GpuLayoutIsTheTreeFlattened) {
+  for (const std::vector<Triangle>& tris : layoutInputs()) {
+    SCOPED_TRACE(tris.size());
+    BvhTree tree = buildBvhTree(tris);
+    Bvh flat;
+    flat.nodes = flattenBvhNodes(tree);
+    flat.triangles = flattenBvhTriangles(tree, tris);
+    flat.triangleOrder = tree.triangleOrder;
+    flat.maxDepth = tree.maxDepth;
+    expectFlatteningOf(tree, flat.nodes);
+    checkStructure(flat, tris);
+    // buildBvh is exactly this build and flattening, and both are deterministic.
+    expectSameArrays(buildBvh(tris), flat);
+  }
+}
+
+TEST(Bvh, GpuLayoutOrderDoesNotDependOnTheTreesStorage) {
+  // The layout fixes its own node order: a tree stored in another order (here reversed, root
+  // still first) flattens to the same bytes.
+  for (const std::vector<Triangle>& tris : layoutInputs()) {
+    SCOPED_TRACE(tris.size());
+    BvhTree tree = buildBvhTree(tris);
+    const uint32_t count = uint32_t(tree.nodes.size());
+    auto moved = [count](uint32_t i) { return i == 0 ? 0 : count - i; };
+    BvhTree reordered = tree;
+    for (uint32_t i = 0; i < count; ++i) {
+      BvhBuildNode node = tree.nodes[i];
+      node.left = moved(node.left);
+      node.right = moved(node.right);
+      reordered.nodes[moved(i)] = node;
+    }
+    const std::vector<shared::BvhNode> expected = flattenBvhNodes(tree);
+    const std::vector<shared::BvhNode> got = flattenBvhNodes(reordered);
+    ASSERT_EQ(got.size(), expected.size());
+    EXPECT_EQ(std::memcmp(got.data(), expected.data(), got.size() * sizeof(got[0])), 0);
+  }
 }
 
 TEST(Bvh, RejectsUnusableInput) {
