@@ -112,8 +112,8 @@ int runRender(const RenderOptions& o) {
   const std::string stoppedBy = stop.signalName();
   const int stopExitCode = stop.exitCode();
 
-  Image variance;
-  Image image = renderer.readImage(o.variance ? &variance : nullptr);
+  Image standardError;   // --variance: the standard error of each pixel's mean (shared/film.h)
+  Image image = renderer.readImage(o.variance ? &standardError : nullptr);
   RenderCounters counters = renderer.counters();
 
   RenderStats stats;
@@ -158,7 +158,7 @@ int runRender(const RenderOptions& o) {
 
   RenderOutputInfo written{o.method, estimator, prepared.scene.name, int(stats.spp), int(stats.targetSpp),
                            renderSeconds, stats.interruptedBy};
-  writeRenderOutput(outputs.image, image, o.variance ? &variance : nullptr, written, o.png);
+  writeRenderOutput(outputs.image, image, o.variance ? &standardError : nullptr, written, o.png);
   if (!outputs.stats.empty()) writeStatsJson(outputs.stats, stats);
 
   info("wrote " + outputs.image + ": " + std::to_string(stats.spp) + " spp in " + std::to_string(renderSeconds) +

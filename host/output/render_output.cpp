@@ -27,7 +27,7 @@ std::string previewPathFor(const std::string& imagePath, bool png) {
   return defaultPreviewPath(imagePath);
 }
 
-void writeRenderOutput(const std::string& imagePath, const Image& image, const Image* variance,
+void writeRenderOutput(const std::string& imagePath, const Image& image, const Image* standardError,
                        const RenderOutputInfo& info, bool png) {
   switch (imageFormatOf(imagePath)) {
     case ImageFormat::Png: writePngPreview(imagePath, image); return;
@@ -43,7 +43,7 @@ void writeRenderOutput(const std::string& imagePath, const Image& image, const I
   meta.strings["scene"] = info.scene;
   meta.strings["renderer"] = std::string("mixtrace ") + MIXTRACE_VERSION;
   if (!info.interruptedBy.empty()) meta.strings["interrupted"] = info.interruptedBy;
-  writeExr(imagePath, image, meta, variance);
+  writeExr(imagePath, image, meta, standardError);
   const std::string preview = previewPathFor(imagePath, png);
   if (!preview.empty()) writePngPreview(preview, image);
 }

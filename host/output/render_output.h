@@ -1,7 +1,7 @@
 #pragma once
 // What a finished (or interrupted) render writes, for `render` and the viewer's save key alike.
 // The format follows the extension of the output's name: .exr is the result (linear float RGB,
-// optionally the variance of the mean, with spp, time, method, estimator and scene in its header)
+// optionally the standard error of the mean, with spp, time, method, estimator and scene in its header)
 // with, unless disabled, the 8-bit sRGB PNG preview beside it; .png and .jpg/.jpeg are the
 // tonemapped image only. Every file is written atomically (output/atomic_file.h).
 #include <string>
@@ -29,8 +29,8 @@ struct RenderOutputInfo {
   std::string interruptedBy; // "SIGINT" or "SIGTERM" when the render stopped early; else ""
 };
 
-// `variance` goes into an EXR only (the caller refuses --variance with other formats).
-void writeRenderOutput(const std::string& imagePath, const Image& image, const Image* variance,
+// `standardError` goes into an EXR only (the caller refuses --variance with other formats).
+void writeRenderOutput(const std::string& imagePath, const Image& image, const Image* standardError,
                        const RenderOutputInfo& info, bool png);
 
 }  // namespace mixtrace

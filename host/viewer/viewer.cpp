@@ -267,8 +267,8 @@ void Viewer::screenshot(const std::string& path) const {
 
 void Viewer::save() {
   MethodView& v = view(method_);
-  Image variance;
-  Image image = v.renderer->readImage(&variance);
+  Image standardError;
+  Image image = v.renderer->readImage(&standardError);
   namespace fs = std::filesystem;
   std::string path = options_.out;
   if (path.empty()) {
@@ -282,7 +282,7 @@ void Viewer::save() {
   written.scene = sceneName_;
   written.spp = int(v.renderer->samplesPerPixel());
   written.seconds = v.seconds;
-  writeRenderOutput(path, image, &variance, written, options_.png);
+  writeRenderOutput(path, image, &standardError, written, options_.png);
   const std::string preview = previewPathFor(path, options_.png);
   info("saved " + path + (preview.empty() ? "" : " and " + preview) + " (" +
        std::to_string(v.renderer->samplesPerPixel()) + " spp)");

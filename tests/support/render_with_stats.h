@@ -1,6 +1,6 @@
 #pragma once
-// One `mixtrace render` with --variance and --stats, read back: the image, its variance and the
-// stats JSON. For tests that check a render's statistics as well as its pixels.
+// One `mixtrace render` with --variance and --stats, read back: the image, its standard errors
+// and the stats JSON. For tests that check a render's statistics as well as its pixels.
 #include <filesystem>
 #include <string>
 
@@ -14,7 +14,9 @@ namespace mixtrace::testing {
 struct RenderWithStats {
   int exitCode = -1;
   std::string stderrText;
-  Image mean, variance;   // empty when the render failed
+  // `variance` holds the standard errors of the pixel means (exr_io.h). Empty when the render
+  // failed.
+  Image mean, variance;
   nlohmann::json stats;
 };
 
