@@ -2,19 +2,19 @@
 
 namespace mixtrace {
 
-CmsMethod cmsMethodFor(const std::string& method) {
+CmsMethod cmsMethodFor(const MethodInfo& method) {
   CmsMethod m;
-  if (method == "learned") {
-    m.clusters = m.learnSelection = true;
-  } else if (method == "cv") {
-    // The published method: the control variate with the selection kept fixed. It keeps uniform
-    // selection, which here is uniform over lights (each cluster weighted by its light count).
-    m.clusters = m.controlVariate = true;
-    m.defaults = LightSelection::Uniform;
-  } else if (method == "cms") {
-    m.clusters = m.controlVariate = m.learnSelection = true;
-  }
+  if (!method.clusters) return m;   // the pt-* methods: no clusters, and the defaults unused
+  m.clusters = true;
+  m.controlVariate = method.controlVariate;
+  m.learnSelection = method.learnSelection;
+  m.defaults = method.selection;
   return m;
+}
+
+CmsMethod cmsMethodFor(const std::string& method) {
+  const MethodInfo* row = findMethod(method);
+  return row ? cmsMethodFor(*row) : CmsMethod{};
 }
 
 CmsScene setUpClusters(PreparedScene& scene, uint32_t maxClusters, LightSelection defaults) {

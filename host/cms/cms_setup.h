@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "cms/methods.h"
 #include "scene/light_clusters.h"
 #include "scene/prepared_scene.h"
 #include "shared/layouts.h"
@@ -17,6 +18,8 @@ struct CmsMethod {
   LightSelection defaults = LightSelection::Power;  // the default (and defensive) selection
 };
 
+// The flags of the method's row (cms/methods.h); none for a pt-* method or a name that is no method.
+CmsMethod cmsMethodFor(const MethodInfo& method);
 CmsMethod cmsMethodFor(const std::string& method);
 
 struct CmsScene {

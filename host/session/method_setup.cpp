@@ -1,28 +1,24 @@
 #include "session/method_setup.h"
 
+#include "cms/methods.h"
+#include "util/error.h"
 #include "util/log.h"
 
 namespace mixtrace {
-namespace {
-
-LightSelection selectionFor(const std::string& method) {
-  if (method == "pt-uniform") return LightSelection::Uniform;
-  if (method == "pt-power") return LightSelection::Power;
-  return cmsMethodFor(method).defaults;
-}
-
-}  // namespace
 
 MethodSetup setUpMethod(const Scene& scene, const RenderOptions& o, const std::string& method) {
+  // The option parser admits only the table's methods; a name from elsewhere is a bug.
+  const MethodInfo* row = findMethod(method);
+  if (!row) throw Error("unknown method '" + method + "'");
   MethodSetup m;
-  m.prepared = prepareScene(scene, selectionFor(method));
+  m.prepared = prepareScene(scene, row->selection);
   RenderSettings& s = m.settings;
   s.width = uint32_t(o.width);
   s.height = uint32_t(o.height);
   s.maxDepth = uint32_t(o.maxDepth);
   s.seed = o.seed;
   s.generalPipelines = o.generalPipelines;
-  s.cms = cmsMethodFor(method);
+  s.cms = cmsMethodFor(*row);
   s.cells = uint32_t(o.cells);
   s.relativeWeighting = o.relativeWeighting;
   s.floatAtomics = o.floatAtomics;
@@ -32,7 +28,7 @@ MethodSetup setUpMethod(const Scene& scene, const RenderOptions& o, const std::s
   if (cmsReducesToPlainMis(s.cms, m.cms)) {
     info(plainMisNote(m.cms));
     s.cms = CmsMethod{};
-    m.estimator = "pt-power";
+    m.estimator = kPlainMisMethod;
   }
   return m;
 }

@@ -5,7 +5,6 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
-#include <map>
 #include <sstream>
 
 #include "compare/image_compare.h"
@@ -15,16 +14,15 @@
 namespace mixtrace {
 namespace {
 
-// Methods --method accepts. Add new estimators here (and a one-line summary below for --help).
-const std::vector<std::string> kMethods = {"pt-uniform", "pt-power", "learned", "cv", "cms"};
-
-const std::map<std::string, std::string> kMethodSummaries = {
-    {"pt-uniform", "MIS path tracer, light picked uniformly"},
-    {"pt-power", "MIS path tracer, light picked by power"},
-    {"learned", "per-cell learned cluster selection, no control variate"},
-    {"cv", "control variate per cell, selection kept fixed"},
-    {"cms", "control variate and learned selection (Hua et al. 2023)"},
-};
+// The names --method accepts, from the method table (cms/methods.h: add new estimators there).
+const std::vector<std::string>& methodNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> list;
+    for (const MethodInfo& m : methodTable()) list.emplace_back(m.name);
+    return list;
+  }();
+  return names;
+}
 
 const std::vector<std::string> kBackends = {"vulkan", "cpu"};
 
@@ -158,7 +156,9 @@ const RenderOptionSpec kOptionSpecs[] = {
        o.maxDepth = static_cast<int>(parseInteger(n, v, 1, kMaxDepthLimit, "an integer in 1..64"));
      }},
     {"--method", nullptr, true,
-     [](RenderOptions& o, const std::string& n, const std::string& v) { o.method = oneOf(n, v, kMethods, "method"); }},
+     [](RenderOptions& o, const std::string& n, const std::string& v) {
+       o.method = oneOf(n, v, methodNames(), "method");
+     }},
     {"--backend", nullptr, true,
      [](RenderOptions& o, const std::string& n, const std::string& v) {
        o.backend = oneOf(n, v, kBackends, "backend");
@@ -350,7 +350,7 @@ ParsedCommandLine parseCompare(const std::vector<std::string>& args) {
 
 }  // namespace
 
-const std::vector<std::string>& knownMethods() { return kMethods; }
+const std::vector<std::string>& knownMethods() { return methodNames(); }
 
 ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
   std::vector<std::string> args;
@@ -479,13 +479,12 @@ std::string helpText() {
           "                       compare-and-swap loops (default: on)\n"
           "  --method NAME        light transport method (default: "
        << defaults.method << "):\n";
-  for (const std::string& method : kMethods) {
-    const auto summary = kMethodSummaries.find(method);
-    text << "                         " << method;
-    if (summary != kMethodSummaries.end())
-      text << std::string(method.size() < 12 ? 12 - method.size() : 1, ' ') << summary->second;
-    text << "\n";
+  for (const MethodInfo& m : methodTable()) {
+    const std::string method = m.name;
+    text << "                         " << method << std::string(method.size() < 12 ? 12 - method.size() : 1, ' ')
+         << m.summary << "\n";
   }
+  const std::string keys = viewerKeyRange();   // the viewer's method keys
   text << "\n"
           "Execution:\n"
           "  --backend NAME       vulkan (the GPU wavefront renderer) or cpu (the\n"
@@ -504,9 +503,12 @@ std::string helpText() {
           "View (mixtrace view [SCENE] [options]):\n"
           "  Renders progressively into a window with the same passes as render\n"
           "  and takes render's options (--width/--height: the film, shown scaled;\n"
-          "  --spp N: stop accumulating at N; --out: where P saves). Keys: 1-5\n"
-          "  method (pt-uniform, pt-power, learned, cv, cms); V split view of two\n"
-          "  methods at equal time, shift+1-5 its right-hand method; G or F1-F6\n"
+          "  --spp N: stop accumulating at N; --out: where P saves). Keys: "
+       << keys << "\n  method (" << joined(methodNames())
+       << "); V split view of two\n"
+          "  methods at equal time, shift+"
+       << keys
+       << " its right-hand method; G or F1-F6\n"
           "  view: image, variance, cells, alpha sum, likely light, cell samples;\n"
           "  P save EXR + PNG; R reset camera; Esc quit. Mouse: left drag orbit,\n"
           "  right drag pan, wheel zoom; W/A/S/D/Q/E fly.\n"

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "cms/methods.h"
+
 namespace mixtrace {
 
 enum class Command { Render, Compare, View, Help, Version, ListDevices };
@@ -38,7 +40,7 @@ struct RenderOptions {
   double timeSeconds = -1.0;     // -1: not given; with spp too, stop at whichever comes first
   int width = 320, height = 240;
   int maxDepth = 5;              // Mitsuba convention, >= 1
-  std::string method = "cms";
+  std::string method = kDefaultMethod;
   std::string backend = "vulkan";  // vulkan | cpu
   uint32_t seed = 0;
   std::string statsPath;         // --stats FILE.json
@@ -90,7 +92,7 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv);
 // The full text printed by --help (ends with a newline).
 std::string helpText();
 
-// The values --method accepts (the method list lives in options.cpp: kMethods).
+// The values --method accepts: the names of the method table (cms/methods.h), in its order.
 const std::vector<std::string>& knownMethods();
 
 }  // namespace mixtrace

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 
+#include "cms/methods.h"
 #include "session/default_scene.h"
 #include "session/method_setup.h"
 #include "session/output_plan.h"
@@ -33,11 +34,16 @@
 namespace mixtrace {
 namespace {
 
-const std::vector<std::string> kMethodKeys = {"pt-uniform", "pt-power", "learned", "cv", "cms"};   // keys 1-5
 const char* const kViewNames[shared::kViewCount] = {"image", "variance", "cells", "alpha sum", "likely light",
                                                     "cell samples"};
 constexpr double kFrameBudgetSeconds = 1.0 / 15.0;   // rendering per frame, so input stays responsive
 constexpr float kScriptFlySeconds = 0.1f;            // one scripted W/A/S/D/Q/E press
+
+// The split view's right-hand method where none was chosen: plain MIS, or for plain MIS itself
+// the default method (cms/methods.h).
+std::string splitPartnerOf(const std::string& method) {
+  return method == kPlainMisMethod ? kDefaultMethod : kPlainMisMethod;
+}
 
 // One method's renderer and the display pass over its state.
 struct MethodView {
@@ -77,7 +83,7 @@ class Viewer {
   std::unique_ptr<CameraController> camera_;
   std::deque<InputEvent> script_, events_;
   bool scripted_ = false, quit_ = false, split_ = false;
-  std::string method_, other_ = "pt-power";
+  std::string method_, other_ = kPlainMisMethod;
   uint32_t viewMode_ = shared::kViewImage;
   int framesLeft_ = 0;
   uint64_t frames_ = 0;
@@ -98,7 +104,7 @@ Viewer::Viewer(const RenderOptions& o, const std::string& scriptPath)
     script_ = loadInputScript(scriptPath);
     scripted_ = true;
   }
-  if (other_ == method_) other_ = "cms";
+  if (other_ == method_) other_ = splitPartnerOf(method_);
   int w = 0, h = 0;
   window_.framebufferSize(w, h);
   swapchain_ = std::make_unique<Swapchain>(ctx_, uint32_t(std::max(w, 1)), uint32_t(std::max(h, 1)));
@@ -108,8 +114,8 @@ Viewer::Viewer(const RenderOptions& o, const std::string& scriptPath)
                                                p.scene.bounds.center(), glm::length(p.scene.bounds.extent()));
   recreateDisplay();
   info("view " + sceneName_ + " on " + ctx_.deviceName() +
-       ": keys 1-5 method, shift+1-5 and V split view, G or F1-F6 debug views, mouse orbit/pan/zoom, WASDQE fly, "
-       "P save, R reset camera, Esc quit");
+       ": keys " + viewerKeyRange() + " method, shift+" + viewerKeyRange() +
+       " and V split view, G or F1-F6 debug views, mouse orbit/pan/zoom, WASDQE fly, P save, R reset camera, Esc quit");
 }
 
 Viewer::~Viewer() { vkDeviceWaitIdle(ctx_.device()); }
@@ -159,13 +165,15 @@ void Viewer::handle(const InputEvent& e) {
       break;
     case Kind::Key: {
       const std::string& k = e.name;
-      if (k.size() == 1 && k[0] >= '1' && k[0] <= '5') {
-        method_ = kMethodKeys[size_t(k[0] - '1')];
-        if (other_ == method_) other_ = method_ == "pt-power" ? "cms" : "pt-power";
+      // Method keys: the table's viewer keys (cms/methods.h); shift+key picks the split's other.
+      const MethodInfo* keyed = k.size() == 1 ? methodForViewerKey(k[0]) : nullptr;
+      if (keyed) {
+        method_ = keyed->name;
+        if (other_ == method_) other_ = splitPartnerOf(method_);
       } else if (k.rfind("shift+", 0) == 0) {
-        const std::string m = kMethodKeys[size_t(k.back() - '1')];
-        if (m != method_) {
-          other_ = m;
+        const MethodInfo* right = methodForViewerKey(k.back());
+        if (right && right->name != method_) {
+          other_ = right->name;
           split_ = true;
         }
       } else if (k == "v") {

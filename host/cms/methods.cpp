@@ -1,0 +1,37 @@
+#include "cms/methods.h"
+
+namespace mixtrace {
+
+const std::vector<MethodInfo>& methodTable() {
+  // cv is the published method: the control variate with the selection kept fixed. It keeps
+  // uniform selection, which here is uniform over lights (each cluster weighted by its light count).
+  static const std::vector<MethodInfo> table = {
+      // name, summary, selection, clusters, learnSelection, controlVariate, viewerKey
+      {"pt-uniform", "MIS path tracer, light picked uniformly", LightSelection::Uniform, false, false, false, '1'},
+      {"pt-power", "MIS path tracer, light picked by power", LightSelection::Power, false, false, false, '2'},
+      {"learned", "per-cell learned cluster selection, no control variate", LightSelection::Power, true, true,
+       false, '3'},
+      {"cv", "control variate per cell, selection kept fixed", LightSelection::Uniform, true, false, true, '4'},
+      {"cms", "control variate and learned selection (Hua et al. 2023)", LightSelection::Power, true, true, true,
+       '5'},
+  };
+  return table;
+}
+
+const MethodInfo* findMethod(const std::string& name) {
+  for (const MethodInfo& m : methodTable())
+    if (name == m.name) return &m;
+  return nullptr;
+}
+
+const MethodInfo* methodForViewerKey(char key) {
+  for (const MethodInfo& m : methodTable())
+    if (key == m.viewerKey) return &m;
+  return nullptr;
+}
+
+std::string viewerKeyRange() {
+  return std::string(1, methodTable().front().viewerKey) + "-" + std::string(1, methodTable().back().viewerKey);
+}
+
+}  // namespace mixtrace
