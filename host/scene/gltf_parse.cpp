@@ -11,6 +11,7 @@
 
 #include "scene/gltf_internal.h"
 #include "scene/gltf_limits.h"
+#include "scene/json_nesting.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -141,29 +142,12 @@ std::string condenseMessage(const std::string& text) {
 }
 
 // The JSON parser and tinygltf's conversion of extras/extensions recurse once per level, so a
-// small file of a few thousand [ or { overflows the stack; this scan is flat.
+// small file of a few thousand [ or { overflows the stack; the scan (json_nesting.h) is flat.
 void checkJsonNesting(const LoadContext& ctx, const unsigned char* json, size_t size) {
-  int depth = 0;
-  bool inString = false;
-  for (size_t i = 0; i < size; ++i) {
-    const unsigned char c = json[i];
-    if (inString) {
-      if (c == '\\') {
-        ++i;  // whatever is escaped, it neither ends the string nor nests
-      } else if (c == '"') {
-        inString = false;
-      }
-    } else if (c == '"') {
-      inString = true;
-    } else if (c == '[' || c == '{') {
-      if (++depth > kMaxJsonNesting) {
-        ctx.fail("JSON nests deeper than " + std::to_string(kMaxJsonNesting) + " levels (at byte " +
-                 std::to_string(i) + "); refused before parsing");
-      }
-    } else if (c == ']' || c == '}') {
-      --depth;
-    }
-  }
+  const size_t at = jsonNestingExceededAt(reinterpret_cast<const char*>(json), size, kMaxJsonNesting);
+  if (at != kJsonNestingOk)
+    ctx.fail("JSON nests deeper than " + std::to_string(kMaxJsonNesting) + " levels (at byte " + std::to_string(at) +
+             "); refused before parsing");
 }
 
 void parseGltfFile(LoadContext& ctx) {

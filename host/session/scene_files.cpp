@@ -8,6 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scene/gltf_limits.h"
+#include "scene/json_nesting.h"
+
 namespace mixtrace {
 namespace {
 
@@ -43,29 +46,6 @@ std::string sceneJson(const std::string& path) {
   return in.gcount() == std::streamsize(length) ? text : "";
 }
 
-// Deeply nested JSON (a hostile file) is left to the loader's own checks: the parse below must
-// not be where it fails.
-constexpr int kMaxNesting = 256;
-
-bool shallow(const std::string& text) {
-  int depth = 0;
-  bool inString = false;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (inString) {
-      if (c == '\\') ++i;
-      else if (c == '"') inString = false;
-    } else if (c == '"') {
-      inString = true;
-    } else if (c == '[' || c == '{') {
-      if (++depth > kMaxNesting) return false;
-    } else if (c == ']' || c == '}') {
-      --depth;
-    }
-  }
-  return true;
-}
-
 // glTF URIs are percent-encoded ("my%20texture.png").
 std::string percentDecoded(const std::string& uri) {
   std::string out;
@@ -86,7 +66,10 @@ std::string percentDecoded(const std::string& uri) {
 std::vector<std::string> filesReferencedByScene(const std::string& scenePath) {
   std::vector<std::string> files;
   const std::string text = sceneJson(scenePath);
-  if (text.empty() || !shallow(text)) return files;
+  // Deeply nested JSON (a hostile file) is left to the loader's own refusal: this parse must not
+  // be where it fails.
+  if (text.empty()) return files;
+  if (jsonNestingExceededAt(text.data(), text.size(), gltf::kMaxJsonNesting) != kJsonNestingOk) return files;
   const nlohmann::json json = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (!json.is_object()) return files;
   const fs::path directory = fs::path(scenePath).parent_path();
