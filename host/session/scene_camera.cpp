@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "scene/prepared_scene.h"
 #include "util/error.h"
 #include "util/log.h"

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene/gltf_limits.h"
-#include "scene/json_nesting.h"
+#include "gltf/gltf_limits.h"
+#include "gltf/json_nesting.h"
 
 namespace mixtrace {
 namespace {

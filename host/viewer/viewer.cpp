@@ -17,7 +17,6 @@
 #include "output/png_preview.h"
 #include "output/render_output.h"
 #include "render/wavefront_renderer.h"
-#include "scene/gltf_loader.h"
 #include "shared/display.h"
 #include "util/error.h"
 #include "util/log.h"

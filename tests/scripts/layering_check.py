@@ -24,14 +24,15 @@ LAYERS = {
     "vulkan":  ["util"],
     "bvh":     ["util", "scene/scene.h"],
     "scene":   ["util", "bvh"],
+    "gltf":    ["util", "scene"],
     "output":  ["util"],
     "compare": ["util", "output"],
     "cms":     ["util", "vulkan", "scene"],
     "render":  ["util", "vulkan", "scene", "output", "cms"],
     "cpu":     ["util", "scene", "output", "cms", "render/renderer.h"],
-    "session": ["util", "scene", "output", "compare", "cms", "render", "cpu"],
+    "session": ["util", "scene", "gltf", "output", "compare", "cms", "render", "cpu"],
     "viewer":  ["util", "vulkan", "scene", "output", "cms", "render", "session"],
-    "app":     ["util", "vulkan", "scene", "output", "compare", "cms", "render", "cpu", "session", "viewer"],
+    "app":     ["util", "vulkan", "scene", "gltf", "output", "compare", "cms", "render", "cpu", "session", "viewer"],
 }
 BELOW_ALL = {"shared"}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')

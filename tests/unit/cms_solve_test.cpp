@@ -23,7 +23,7 @@
 #include "cms/gpu_solver.h"
 #include "cms/reference_solve.h"
 #include "render/wavefront_renderer.h"
-#include "scene/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "scene/prepared_scene.h"
 #include "shared/bindings.h"
 #include "shared/cms_layouts.h"

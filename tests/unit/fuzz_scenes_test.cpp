@@ -22,7 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "output/exr_io.h"
-#include "scene/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "support/run_binary.h"
 #include "support/shipped_scenes.h"
 #include "util/error.h"

@@ -1,6 +1,6 @@
 // Tests of loadGltf. Every case writes a small glTF (JSON with a base64 buffer, or .glb) into a
 // temporary directory at run time, so no binary fixtures live in the repository.
-#include "scene/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 
 #include <gtest/gtest.h>
 
@@ -867,7 +867,7 @@ TEST_F(GltfLoaderTest, NodeCycleIsAnError) {
 
 // --- Shipped scenes ----------------------------------------------------------------------------
 
-// The nesting limit (scene/gltf_limits.h: 128) counts [ and { outside strings only: the document's
+// The nesting limit (gltf/gltf_limits.h: 128) counts [ and { outside strings only: the document's
 // own object is level 1, so extras nested 127 deep load and 128 deep are refused; brackets and
 // escaped quotes inside a string do not count.
 TEST_F(GltfLoaderTest, NestingLimitCountsBracketsOutsideStringsOnly) {

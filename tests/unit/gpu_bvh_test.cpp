@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "bvh/bvh.h"
-#include "scene/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "shared/bindings.h"
 #include "support/shipped_scenes.h"
 #include "shared/layouts.h"

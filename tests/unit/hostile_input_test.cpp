@@ -15,7 +15,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "scene/gltf_limits.h"
+#include "gltf/gltf_limits.h"
 #include "support/run_binary.h"
 
 namespace fs = std::filesystem;

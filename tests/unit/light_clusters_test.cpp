@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "scene/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "scene/light_clusters.h"
 #include "support/shipped_scenes.h"
 #include "util/error.h"

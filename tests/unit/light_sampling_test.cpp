@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "scene/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "scene/shared_scene_access.h"
 #include "support/chi2.h"
 #include "support/shipped_scenes.h"

@@ -5,8 +5,8 @@
 
 #include <stb/stb_image.h>  // declarations only: stb_image is compiled into libstb
 
-#include "scene/gltf_internal.h"
-#include "scene/gltf_limits.h"
+#include "gltf/gltf_internal.h"
+#include "gltf/gltf_limits.h"
 
 namespace mixtrace {
 namespace gltf {

@@ -16,7 +16,7 @@ struct GltfLoadOptions {
 // magic bytes, not its extension. Everything the user can get wrong (missing or malformed file,
 // out-of-range data, unsupported required extensions, no triangles) throws mixtrace::Error with
 // one line naming the file; recoverable oddities are reported through mixtrace::warn. Hostile
-// files are bounded by scene/gltf_limits.h and confined to the asset root.
+// files are bounded by gltf/gltf_limits.h and confined to the asset root.
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options = {});
 
 }  // namespace mixtrace

@@ -9,9 +9,9 @@
 #include <set>
 #include <sstream>
 
-#include "scene/gltf_internal.h"
-#include "scene/gltf_limits.h"
-#include "scene/json_nesting.h"
+#include "gltf/gltf_internal.h"
+#include "gltf/gltf_limits.h"
+#include "gltf/json_nesting.h"
 #include "util/error.h"
 #include "util/log.h"
 

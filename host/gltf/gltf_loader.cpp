@@ -1,7 +1,7 @@
 // loadGltf: walks the node hierarchy of the chosen scene and flattens meshes, the camera and
 // punctual lights into world space. Parsing, accessors, geometry and materials live in the other
 // gltf_*.cpp files.
-#include "scene/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "scene/gltf_internal.h"
+#include "gltf/gltf_internal.h"
 #include "util/error.h"
 
 namespace mixtrace {

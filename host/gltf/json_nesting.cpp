@@ -1,4 +1,4 @@
-#include "scene/json_nesting.h"
+#include "gltf/json_nesting.h"
 
 namespace mixtrace {
 

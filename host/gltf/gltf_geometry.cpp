@@ -3,7 +3,7 @@
 #include <cmath>
 #include <utility>
 
-#include "scene/gltf_internal.h"
+#include "gltf/gltf_internal.h"
 
 namespace mixtrace {
 namespace gltf {

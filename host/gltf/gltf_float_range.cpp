@@ -5,7 +5,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "scene/gltf_internal.h"
+#include "gltf/gltf_internal.h"
 
 namespace mixtrace {
 namespace gltf {

@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "scene/gltf_internal.h"
+#include "gltf/gltf_internal.h"
 
 namespace mixtrace {
 namespace gltf {

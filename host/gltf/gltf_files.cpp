@@ -11,8 +11,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "scene/gltf_internal.h"
-#include "scene/gltf_limits.h"
+#include "gltf/gltf_internal.h"
+#include "gltf/gltf_limits.h"
 #include "util/error.h"
 
 namespace mixtrace {

@@ -4,8 +4,8 @@
 #include <cstring>
 #include <limits>
 
-#include "scene/gltf_internal.h"
-#include "scene/gltf_limits.h"
+#include "gltf/gltf_internal.h"
+#include "gltf/gltf_limits.h"
 
 namespace mixtrace {
 namespace gltf {
