@@ -5,14 +5,22 @@
 #include <fstream>
 #include <sstream>
 
+#include "cms/methods.h"
 #include "util/error.h"
 
 namespace mixtrace {
 
 const std::vector<std::string>& knownKeyNames() {
-  static const std::vector<std::string> names = {
-      "1", "2", "3", "4", "5", "shift+1", "shift+2", "shift+3", "shift+4", "shift+5", "v", "g", "f1", "f2",
-      "f3", "f4", "f5", "f6", "p", "r", "w", "a", "s", "d", "q", "e", "escape"};
+  static const std::vector<std::string> names = [] {
+    // The method keys come from the method table (cms/methods.h), plain and with shift.
+    std::vector<std::string> keys;
+    for (const char* prefix : {"", "shift+"})
+      for (const MethodInfo& method : methodTable()) keys.push_back(prefix + std::string(1, method.viewerKey));
+    for (const char* other : {"v", "g", "f1", "f2", "f3", "f4", "f5", "f6", "p", "r", "w", "a", "s", "d", "q", "e",
+                              "escape"})
+      keys.push_back(other);
+    return keys;
+  }();
   return names;
 }
 

@@ -2,6 +2,9 @@
 // lines are skipped, and a bad line is one error naming the file and line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "cms/methods.h"
 #include "util/error.h"
 #include "viewer/input.h"
 
@@ -72,6 +75,19 @@ TEST(ViewerInput, AnUnknownKeyListsTheValidNames) {
   for (const std::string& key : knownKeyNames()) EXPECT_NE(message.find(key), std::string::npos) << key;
   EXPECT_NE(message.find("esc"), std::string::npos) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+// The method keys a script may press are the method table's, plain and with shift (one list:
+// cms/methods.h), and no other digit is a key.
+TEST(ViewerInput, MethodKeysAreTheMethodTablesKeys) {
+  const std::vector<std::string>& keys = knownKeyNames();
+  auto known = [&](const std::string& k) { return std::find(keys.begin(), keys.end(), k) != keys.end(); };
+  for (const MethodInfo& method : methodTable()) {
+    EXPECT_TRUE(known(std::string(1, method.viewerKey))) << method.name;
+    EXPECT_TRUE(known("shift+" + std::string(1, method.viewerKey))) << method.name;
+  }
+  for (char digit = '0'; digit <= '9'; ++digit)
+    if (!methodForViewerKey(digit)) EXPECT_FALSE(known(std::string(1, digit))) << digit;
 }
 
 }  // namespace
