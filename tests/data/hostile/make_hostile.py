@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the hand-made hostile inputs of issue 11 (tests/unit/hostile_input_test.cpp runs them).
+"""Writes the hand-made hostile inputs of issue 11 (tests/e2e/hostile_input_test.cpp runs them).
 
 Each file is small and exercises one way a file could crash, hang, exhaust memory, read outside
 its folder or render wrong in silence. Run it from anywhere; it writes next to itself. The FIFO,
