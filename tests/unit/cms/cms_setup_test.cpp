@@ -1,13 +1,8 @@
 // What cms says when it runs as plain MIS: true for the scene at hand (a scene without lights is
-// not "lights that form one cluster").
+// not "lights that form one cluster"; the render that says it: tests/e2e/no_lights_test.cpp).
 #include "cms/cms_setup.h"
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
-#include <fstream>
-
-#include "support/run_binary.h"
 
 namespace mixtrace {
 namespace {
@@ -20,25 +15,6 @@ TEST(CmsSetup, PlainMisNoteSaysNoLightsForASceneWithout) {
   one.clusters.lightCluster = {0u};
   one.clusters.clusters.resize(1);
   EXPECT_NE(plainMisNote(one).find("one cluster"), std::string::npos) << plainMisNote(one);
-}
-
-// The Cornell box with its light switched off, rendered with cms.
-TEST(CmsSetup, RenderOfASceneWithoutLightsSaysSo) {
-  std::ifstream in(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/cornell_box.gltf");
-  nlohmann::json gltf = nlohmann::json::parse(in);
-  for (auto& material : gltf["materials"]) {
-    material.erase("emissiveFactor");
-    material.erase("extensions");
-  }
-  gltf.erase("extensionsUsed");
-  const auto dir = testing::scratchDir("cms-no-lights");
-  testing::writeFile(dir / "dark.gltf", gltf.dump());
-  const testing::RunResult r = testing::runMixtrace("render " + (dir / "dark.gltf").string() +
-                                                    " --method cms --spp 1 --width 8 --height 8 --no-png --out " +
-                                                    (dir / "dark.exr").string());
-  EXPECT_EQ(r.exitCode, 0) << r.stderrText;
-  EXPECT_NE(r.stderrText.find("cms: the scene has no lights"), std::string::npos) << r.stderrText;
-  EXPECT_EQ(r.stderrText.find("one cluster"), std::string::npos) << r.stderrText;
 }
 
 }  // namespace

@@ -1,0 +1,33 @@
+// A render with cms of a scene without lights says so, and not that its lights form one cluster
+// (the note itself: tests/unit/cms/cms_setup_test.cpp).
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+#include "support/run_binary.h"
+
+namespace mixtrace {
+namespace {
+
+// The Cornell box with its light switched off, rendered with cms.
+TEST(NoLights, CmsRenderSaysTheSceneHasNoLights) {
+  std::ifstream in(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/cornell_box.gltf");
+  nlohmann::json gltf = nlohmann::json::parse(in);
+  for (auto& material : gltf["materials"]) {
+    material.erase("emissiveFactor");
+    material.erase("extensions");
+  }
+  gltf.erase("extensionsUsed");
+  const auto dir = testing::scratchDir("cms-no-lights");
+  testing::writeFile(dir / "dark.gltf", gltf.dump());
+  const testing::RunResult r = testing::runMixtrace("render " + (dir / "dark.gltf").string() +
+                                                    " --method cms --spp 1 --width 8 --height 8 --no-png --out " +
+                                                    (dir / "dark.exr").string());
+  EXPECT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_NE(r.stderrText.find("cms: the scene has no lights"), std::string::npos) << r.stderrText;
+  EXPECT_EQ(r.stderrText.find("one cluster"), std::string::npos) << r.stderrText;
+}
+
+}  // namespace
+}  // namespace mixtrace
