@@ -11,7 +11,7 @@ namespace mixtrace {
 namespace {
 
 // The Cornell box with its light switched off, rendered with cms.
-TEST(NoLights, CmsRenderSaysTheSceneHasNoLights) {
+TEST(CmsSetup, RenderOfASceneWithoutLightsSaysSo) {
   std::ifstream in(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/cornell_box.gltf");
   nlohmann::json gltf = nlohmann::json::parse(in);
   for (auto& material : gltf["materials"]) {
