@@ -8,7 +8,7 @@
 
 namespace mixtrace {
 
-Bvh buildBvh(const std::vector<Triangle>& triangles) {
+Bvh buildBvh(const std::vector<TriangleCorners>& triangles) {
   const auto start = std::chrono::steady_clock::now();
   BvhTree tree = buildBvhTree(triangles);
   Bvh bvh;

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bvh/bvh_build.h"
-#include "scene/scene.h"
+#include "bvh/triangle_corners.h"
 #include "shared/layouts.h"
 
 namespace mixtrace {
@@ -22,6 +22,6 @@ struct Bvh {
 };
 
 // Throws mixtrace::Error when there are no triangles or a vertex is not finite.
-Bvh buildBvh(const std::vector<Triangle>& triangles);
+Bvh buildBvh(const std::vector<TriangleCorners>& triangles);
 
 }  // namespace mixtrace

@@ -6,7 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene/scene.h"
+#include "bvh/triangle_corners.h"
+#include "util/bounds.h"
 
 namespace mixtrace {
 
@@ -37,6 +38,6 @@ struct BvhTree {
 };
 
 // Throws mixtrace::Error when there are no triangles or a vertex is not finite.
-BvhTree buildBvhTree(const std::vector<Triangle>& triangles);
+BvhTree buildBvhTree(const std::vector<TriangleCorners>& triangles);
 
 }  // namespace mixtrace

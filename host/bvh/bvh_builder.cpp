@@ -71,7 +71,7 @@ struct SahSplit {
 
 class BinnedSahBuilder {
  public:
-  BinnedSahBuilder(const std::vector<Triangle>& triangles, BvhTree& out)
+  BinnedSahBuilder(const std::vector<TriangleCorners>& triangles, BvhTree& out)
       : out_(out), bounds_(triangles.size()), centroids_(triangles.size()) {
     for (size_t i = 0; i < triangles.size(); ++i) {
       for (const glm::vec3& p : triangles[i].p) bounds_[i].grow(p);
@@ -223,7 +223,7 @@ class BinnedSahBuilder {
   std::vector<glm::vec3> centroids_;    // centre of the triangle's bounds
 };
 
-void validate(const std::vector<Triangle>& triangles) {
+void validate(const std::vector<TriangleCorners>& triangles) {
   if (triangles.empty()) throw Error("cannot build a BVH: the scene has no triangles");
   if (triangles.size() > 0x7fffffffu)
     throw Error("cannot build a BVH: more than 2^31 triangles");
@@ -238,7 +238,7 @@ void validate(const std::vector<Triangle>& triangles) {
 
 }  // namespace
 
-BvhTree buildBvhTree(const std::vector<Triangle>& triangles) {
+BvhTree buildBvhTree(const std::vector<TriangleCorners>& triangles) {
   validate(triangles);
   BvhTree tree;
   BinnedSahBuilder(triangles, tree).build();

@@ -28,7 +28,7 @@ void flattenNode(const BvhTree& tree, uint32_t source, uint32_t target,
   flattenNode(tree, node.right, left + 1, out);
 }
 
-shared::TriangleGeom makeGeom(const Triangle& tri) {
+shared::TriangleGeom makeGeom(const TriangleCorners& tri) {
   shared::TriangleGeom g;
   g.v0 = tri.p[0];
   g.e1 = tri.p[1] - tri.p[0];
@@ -53,7 +53,7 @@ std::vector<shared::BvhNode> flattenBvhNodes(const BvhTree& tree) {
 }
 
 std::vector<shared::TriangleGeom> flattenBvhTriangles(const BvhTree& tree,
-                                                      const std::vector<Triangle>& triangles) {
+                                                      const std::vector<TriangleCorners>& triangles) {
   std::vector<shared::TriangleGeom> out(tree.triangleOrder.size());
   for (size_t i = 0; i < out.size(); ++i) out[i] = makeGeom(triangles[tree.triangleOrder[i]]);
   return out;

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "bvh/bvh_build.h"
-#include "scene/scene.h"
+#include "bvh/triangle_corners.h"
 #include "shared/layouts.h"
 
 namespace mixtrace {
@@ -20,6 +20,6 @@ std::vector<shared::BvhNode> flattenBvhNodes(const BvhTree& tree);
 // whose cross(e1, e2) is exactly zero (zero area: it has no normal) is stored with e1 = e2 = 0,
 // which no ray can hit.
 std::vector<shared::TriangleGeom> flattenBvhTriangles(const BvhTree& tree,
-                                                      const std::vector<Triangle>& triangles);
+                                                      const std::vector<TriangleCorners>& triangles);
 
 }  // namespace mixtrace

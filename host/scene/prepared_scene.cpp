@@ -10,7 +10,7 @@ namespace mixtrace {
 PreparedScene prepareScene(Scene scene, LightSelection selection) {
   if (scene.triangles.empty()) throw Error(scene.name + " contains no triangles");
   PreparedScene p;
-  p.bvh = buildBvh(scene.triangles);
+  p.bvh = buildBvh(cornersOf(scene.triangles));
   p.lights = buildLightSet(scene, p.bvh.triangleOrder, selection);
   p.features = deriveFeatures(scene, p.lights);
   if (p.lights.lights.empty()) warn(scene.name + " has no lights: the image will be black");

@@ -8,20 +8,11 @@
 #include <glm/glm.hpp>
 
 #include "shared/layouts.h"
+#include "util/bounds.h"
 
 namespace mixtrace {
 
 using shared::MaterialGpu;
-
-struct Bounds {
-  glm::vec3 min{1e30f};
-  glm::vec3 max{-1e30f};
-  void grow(const glm::vec3& p) { min = glm::min(min, p); max = glm::max(max, p); }
-  void grow(const Bounds& b) { min = glm::min(min, b.min); max = glm::max(max, b.max); }
-  bool valid() const { return min.x <= max.x && min.y <= max.y && min.z <= max.z; }
-  glm::vec3 center() const { return 0.5f * (min + max); }
-  glm::vec3 extent() const { return max - min; }
-};
 
 // One flattened world-space triangle.
 struct Triangle {

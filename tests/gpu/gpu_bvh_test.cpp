@@ -128,7 +128,7 @@ std::vector<Ray> randomRays(const Bounds& b, size_t n, uint32_t seed) {
 // Compares GPU closest and any hits with brute force. Tolerates disagreements only on rays that
 // graze an edge within float precision (hit in one, missed in the other, at a relative 1e-4).
 void checkScene(VulkanContext& ctx, const std::vector<Triangle>& tris, const Bounds& bounds, size_t rayCount, const char* label) {
-  Bvh bvh = buildBvh(tris);
+  Bvh bvh = buildBvh(cornersOf(tris));
   GpuTracer tracer(ctx, bvh);
   std::vector<Ray> rays = randomRays(bounds, rayCount, 1234);
   double seconds = 0.0;

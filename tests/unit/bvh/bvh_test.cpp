@@ -40,8 +40,8 @@ void bind(const Bvh& bvh) {
   bvh_test_buffers::triangles = bvh.triangles.data();
 }
 
-Triangle makeTriangle(vec3 a, vec3 b, vec3 c) {
-  Triangle t{};
+TriangleCorners makeTriangle(vec3 a, vec3 b, vec3 c) {
+  TriangleCorners t{};
   t.p[0] = a;
   t.p[1] = b;
   t.p[2] = c;
@@ -72,9 +72,9 @@ class Random {
 // Triangles of random size (1e-3 .. 0.5) in [-1, 1]^3, with the awkward cases mixed in:
 // axis-aligned triangles (flat boxes), overlapping coplanar ones, exact duplicates (ties in t),
 // zero-area ones, slivers and a few spanning the whole soup.
-std::vector<Triangle> randomSoup(uint32_t seed, int count) {
+std::vector<TriangleCorners> randomSoup(uint32_t seed, int count) {
   Random rng(seed);
-  std::vector<Triangle> tris;
+  std::vector<TriangleCorners> tris;
   while (int(tris.size()) < count) {
     float kind = rng.uniform();
     vec3 c = rng.inBox(vec3(-1.0f), vec3(1.0f));
@@ -114,12 +114,12 @@ std::vector<Triangle> randomSoup(uint32_t seed, int count) {
   return tris;
 }
 
-void addQuad(std::vector<Triangle>& tris, vec3 a, vec3 b, vec3 c, vec3 d) {
+void addQuad(std::vector<TriangleCorners>& tris, vec3 a, vec3 b, vec3 c, vec3 d) {
   tris.push_back(makeTriangle(a, b, c));
   tris.push_back(makeTriangle(a, c, d));
 }
 
-void addBox(std::vector<Triangle>& tris, vec3 lo, vec3 hi) {
+void addBox(std::vector<TriangleCorners>& tris, vec3 lo, vec3 hi) {
   vec3 p[8];
   for (int i = 0; i < 8; ++i)
     p[i] = vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
@@ -133,8 +133,8 @@ void addBox(std::vector<Triangle>& tris, vec3 lo, vec3 hi) {
 
 // A closed room with a tessellated floor, boxes and a sphere, shifted off the world origin and
 // scaled, so that coordinates, edges and t values all live at `scale`.
-std::vector<Triangle> roomScene(float scale) {
-  std::vector<Triangle> tris;
+std::vector<TriangleCorners> roomScene(float scale) {
+  std::vector<TriangleCorners> tris;
   addBox(tris, vec3(0.0f), vec3(1.0f));
   const int grid = 30;
   for (int i = 0; i < grid; ++i) {
@@ -158,7 +158,7 @@ std::vector<Triangle> roomScene(float scale) {
       addQuad(tris, spherePoint(r, s), spherePoint(r + 1, s), spherePoint(r + 1, s + 1),
               spherePoint(r, s + 1));
   const vec3 offset(3.0f, -2.0f, 5.0f);
-  for (Triangle& t : tris)
+  for (TriangleCorners& t : tris)
     for (vec3& p : t.p) p = (p + offset) * scale;
   return tris;
 }
@@ -170,7 +170,7 @@ bool contains(const shared::BvhNode& node, vec3 p) {
          glm::all(glm::lessThanEqual(p, node.boundsMax));
 }
 
-void checkStructure(const Bvh& bvh, const std::vector<Triangle>& input) {
+void checkStructure(const Bvh& bvh, const std::vector<TriangleCorners>& input) {
   const size_t n = input.size();
   ASSERT_EQ(bvh.triangleOrder.size(), n);
   ASSERT_EQ(bvh.triangles.size(), n);
@@ -183,7 +183,7 @@ void checkStructure(const Bvh& bvh, const std::vector<Triangle>& input) {
 
   // Stored geometry is the input's, in BVH order (zero-area triangles collapsed to a point).
   for (size_t i = 0; i < n; ++i) {
-    const Triangle& t = input[bvh.triangleOrder[i]];
+    const TriangleCorners& t = input[bvh.triangleOrder[i]];
     const shared::TriangleGeom& g = bvh.triangles[i];
     ASSERT_EQ(g.v0, t.p[0]);
     vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];
@@ -276,9 +276,9 @@ HitRecord bruteClosest(const Bvh& bvh, const Ray& ray) {
 // A mix of ray kinds: origins inside and outside the bounds, rays aimed at triangles, exactly
 // axis-aligned directions, directions with one zero component (some with the origin on a
 // vertex's coordinate plane, so they run inside flat boxes), unnormalised lengths, finite tMax.
-std::vector<Ray> makeRays(const std::vector<Triangle>& tris, uint32_t seed, int count) {
+std::vector<Ray> makeRays(const std::vector<TriangleCorners>& tris, uint32_t seed, int count) {
   Bounds bounds;
-  for (const Triangle& t : tris)
+  for (const TriangleCorners& t : tris)
     for (const vec3& p : t.p) bounds.grow(p);
   const vec3 center = bounds.center();
   const vec3 half = 0.5f * bounds.extent();
@@ -297,7 +297,7 @@ std::vector<Ray> makeRays(const std::vector<Triangle>& tris, uint32_t seed, int 
     } else if (kind == 1) {
       ray.direction = rng.inBox(bounds.min, bounds.max) - ray.origin;
     } else if (kind == 2) {
-      const Triangle& t = tris[rng.index(int(tris.size()))];
+      const TriangleCorners& t = tris[rng.index(int(tris.size()))];
       float a = rng.uniform(), b = rng.uniform();
       if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
       ray.direction = t.p[0] + a * (t.p[1] - t.p[0]) + b * (t.p[2] - t.p[0]) - ray.origin;
@@ -394,7 +394,7 @@ Mismatches compareWithBruteForce(const Bvh& bvh, const std::vector<Ray>& rays) {
   return m;
 }
 
-void expectAgreement(const std::vector<Triangle>& tris, uint32_t seed, int rayCount) {
+void expectAgreement(const std::vector<TriangleCorners>& tris, uint32_t seed, int rayCount) {
   Bvh bvh = buildBvh(tris);
   checkStructure(bvh, tris);
   if (testing::Test::HasFatalFailure()) return;
@@ -419,7 +419,7 @@ TEST(Bvh, MillimetreSceneMatchesBruteForce) { expectAgreement(roomScene(1e-3f), 
 TEST(Bvh, KilometreSceneMatchesBruteForce) { expectAgreement(roomScene(1e3f), 8, 10000); }
 
 TEST(Bvh, SingleTriangle) {
-  std::vector<Triangle> tris{makeTriangle(vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f))};
+  std::vector<TriangleCorners> tris{makeTriangle(vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f))};
   Bvh bvh = buildBvh(tris);
   checkStructure(bvh, tris);
   ASSERT_EQ(bvh.nodes.size(), 1u);
@@ -442,7 +442,7 @@ TEST(Bvh, SingleTriangle) {
 TEST(Bvh, IdenticalCentroidsStillSplit) {
   // 2000 triangles sharing one centroid: SAH has nothing to bin, median splits must take over.
   Random rng(11);
-  std::vector<Triangle> tris;
+  std::vector<TriangleCorners> tris;
   for (int i = 0; i < 2000; ++i) {
     vec3 a = rng.unitVector(), b = rng.unitVector();
     tris.push_back(makeTriangle(vec3(0.3f) + a, vec3(0.3f) + b, vec3(0.3f) - a - b));
@@ -458,7 +458,7 @@ TEST(Bvh, IdenticalCentroidsStillSplit) {
 TEST(Bvh, DepthStaysBoundedOnPathologicalInput) {
   // Triangles shrinking geometrically towards a point: each SAH split peels off only the few
   // largest, which without the depth guard nests far deeper than the 64-entry stack allows.
-  std::vector<Triangle> tris;
+  std::vector<TriangleCorners> tris;
   for (int i = 0; i < 120; ++i) {
     for (int k = 0; k < 4; ++k) {
       float s = std::ldexp(1.0f, -i) * (1.0f + 0.1f * k);
@@ -474,7 +474,7 @@ TEST(Bvh, DepthStaysBoundedOnPathologicalInput) {
 }
 
 TEST(Bvh, ZeroAreaTrianglesAreNeverHit) {
-  std::vector<Triangle> tris{
+  std::vector<TriangleCorners> tris{
       makeTriangle(vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(2.0f, 0.0f, 0.0f)),  // collinear
       makeTriangle(vec3(0.5f), vec3(0.5f), vec3(0.5f))};                           // a point
   Bvh bvh = buildBvh(tris);
@@ -531,8 +531,8 @@ void expectSameArrays(const Bvh& a, const Bvh& b) {
   EXPECT_EQ(a.maxDepth, b.maxDepth);
 }
 
-std::vector<std::vector<Triangle>> layoutInputs() {
-  std::vector<Triangle> sameCentroid;  // median splits only
+std::vector<std::vector<TriangleCorners>> layoutInputs() {
+  std::vector<TriangleCorners> sameCentroid;  // median splits only
   Random rng(31);
   for (int i = 0; i < 300; ++i) {
     vec3 a = rng.unitVector(), b = rng.unitVector();
@@ -543,7 +543,7 @@ std::vector<std::vector<Triangle>> layoutInputs() {
 }
 
 TEST(Bvh, GpuLayoutIsTheTreeFlattened) {
-  for (const std::vector<Triangle>& tris : layoutInputs()) {
+  for (const std::vector<TriangleCorners>& tris : layoutInputs()) {
     SCOPED_TRACE(tris.size());
     BvhTree tree = buildBvhTree(tris);
     Bvh flat;
@@ -561,7 +561,7 @@ TEST(Bvh, GpuLayoutIsTheTreeFlattened) {
 TEST(Bvh, GpuLayoutOrderDoesNotDependOnTheTreesStorage) {
   // The layout fixes its own node order: a tree stored in another order (here reversed, root
   // still first) flattens to the same bytes.
-  for (const std::vector<Triangle>& tris : layoutInputs()) {
+  for (const std::vector<TriangleCorners>& tris : layoutInputs()) {
     SCOPED_TRACE(tris.size());
     BvhTree tree = buildBvhTree(tris);
     const uint32_t count = uint32_t(tree.nodes.size());
@@ -582,7 +582,7 @@ TEST(Bvh, GpuLayoutOrderDoesNotDependOnTheTreesStorage) {
 
 TEST(Bvh, RejectsUnusableInput) {
   EXPECT_THROW(buildBvh({}), Error);
-  std::vector<Triangle> tris{makeTriangle(vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f))};
+  std::vector<TriangleCorners> tris{makeTriangle(vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f))};
   tris[0].p[1].y = std::numeric_limits<float>::quiet_NaN();
   EXPECT_THROW(buildBvh(tris), Error);
   tris[0].p[1].y = std::numeric_limits<float>::infinity();
@@ -605,7 +605,7 @@ TEST(Bvh, PrintsSpeed) {
     float radius = 1.0f + 0.05f * std::sin(7.0f * theta) * std::cos(5.0f * phi);
     return radius * vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
   };
-  std::vector<Triangle> tris;
+  std::vector<TriangleCorners> tris;
   for (int r = 0; r < rings; ++r) {
     for (int s = 0; s < segments; ++s) {
       tris.push_back(makeTriangle(point(r, s), point(r + 1, s), point(r + 1, s + 1)));
