@@ -7,11 +7,11 @@
 
 namespace mixtrace {
 
-PreparedScene prepareScene(Scene scene, LightSelection selection) {
+PreparedScene prepareScene(Scene scene) {
   if (scene.triangles.empty()) throw Error(scene.name + " contains no triangles");
   PreparedScene p;
   p.bvh = buildBvh(scene.triangles);
-  p.lights = buildLightSet(scene, p.bvh.triangleOrder, selection);
+  p.lights = buildLightSet(scene, p.bvh.triangleOrder);
   p.features = deriveFeatures(scene, p.lights);
   if (p.lights.lights.empty()) warn(scene.name + " has no lights: the image will be black");
 
