@@ -1,14 +1,21 @@
 #include "scene/prepared_scene.h"
 
+#include <atomic>
 #include <cmath>
 
 #include "util/error.h"
 #include "util/log.h"
 
 namespace mixtrace {
+namespace {
+std::atomic<uint64_t> gPreparedScenes{0};
+}  // namespace
+
+uint64_t preparedSceneCount() { return gPreparedScenes.load(); }
 
 PreparedScene prepareScene(Scene scene) {
   if (scene.triangles.empty()) throw Error(scene.name + " contains no triangles");
+  ++gPreparedScenes;
   PreparedScene p;
   p.bvh = buildBvh(scene.triangles);
   p.lights = buildLightSet(scene, p.bvh.triangleOrder);

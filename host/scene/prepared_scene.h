@@ -26,6 +26,10 @@ struct PreparedScene {
 
 PreparedScene prepareScene(Scene scene);
 
+// How many scenes this process has prepared (each one a BVH build): lets the tests check that
+// setting up a method, or switching to one, prepares none.
+uint64_t preparedSceneCount();
+
 // The camera used when the file has none and the command line sets none: the bounding sphere
 // framed from +Z, looking down -Z (its target is the bounds' centre).
 Camera defaultFraming(const Scene& scene);
