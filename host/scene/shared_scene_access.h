@@ -8,6 +8,7 @@
 // this one.
 #include <vector>
 
+#include "scene/light_selection.h"
 #include "scene/prepared_scene.h"
 #include "shared/layouts.h"
 

@@ -10,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include "scene/gltf_loader.h"
-#include "scene/light_selection.h"
 #include "scene/shared_scene_access.h"
 #include "support/chi2.h"
 #include "support/shipped_scenes.h"

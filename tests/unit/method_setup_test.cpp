@@ -13,9 +13,9 @@
 
 #include "cms/methods.h"
 #include "cpu/cpu_renderer.h"
-#include "scene/gltf_loader.h"
 #include "scene/light_selection.h"
 #include "scene/prepared_scene.h"
+#include "session/scene_camera.h"
 
 namespace mixtrace {
 namespace {
@@ -38,7 +38,9 @@ template <class T> bool sameBytes(const std::vector<T>& a, const std::vector<T>&
 // plain ones.
 TEST(MethodSetup, EveryMethodSetsUpOnOnePreparedSceneAndBuildsNoBvh) {
   const RenderOptions o = smallRender();
-  const PreparedScene prepared = prepareScene(loadGltf(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/many_lights.gltf"));
+  // As `render` and `view` load it (session/scene_camera.h), prepared once.
+  const PreparedScene prepared =
+      prepareScene(loadSceneForRendering(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/many_lights.gltf", o));
   const PreparedScene untouched = prepared;
   const uint64_t preparations = preparedSceneCount();
   const size_t lightCount = prepared.lights.lights.size();
