@@ -61,16 +61,16 @@ int runRender(const RenderOptions& o) {
   // The device next, before the scene: a wrong --device must not cost loading a large scene.
   std::unique_ptr<VulkanContext> ctx;
   if (o.backend != "cpu") ctx = std::make_unique<VulkanContext>(ContextOptions{o.device, o.validation});
-  MethodSetup setup = setUpMethod(loadSceneForRendering(scenePath, o), o, o.method);
-  const PreparedScene& prepared = setup.prepared;
+  const PreparedScene prepared = prepareScene(loadSceneForRendering(scenePath, o));
+  MethodSetup setup = setUpMethod(prepared, o, o.method);
   const RenderSettings& settings = setup.settings;
-  const CmsScene& cms = setup.cms;
+  const CmsScene& cms = setup.lights.cms;
   const std::string& estimator = setup.estimator;
   std::unique_ptr<Renderer> backend;
   if (o.backend == "cpu") {
-    backend = std::make_unique<CpuRenderer>(prepared, settings, setup.clusters());
+    backend = std::make_unique<CpuRenderer>(prepared, setup.lights, settings);
   } else {
-    backend = std::make_unique<WavefrontRenderer>(*ctx, prepared, settings, setup.clusters());
+    backend = std::make_unique<WavefrontRenderer>(*ctx, prepared, setup.lights, settings);
   }
   Renderer& renderer = *backend;
   double setupSeconds = secondsSince(setupStart);

@@ -17,7 +17,8 @@ CmsMethod cmsMethodFor(const std::string& method) {
   return row ? cmsMethodFor(*row) : CmsMethod{};
 }
 
-CmsScene setUpClusters(PreparedScene& scene, uint32_t maxClusters, LightSelection defaults) {
+CmsScene setUpClusters(const PreparedScene& scene, std::vector<shared::LightSelectionGpu>& selection,
+                       uint32_t maxClusters, LightSelection defaults) {
   CmsScene cms;
   cms.clusters = buildLightClusters(scene, maxClusters, defaults);
   LightClusters& c = cms.clusters;
@@ -29,8 +30,8 @@ CmsScene setUpClusters(PreparedScene& scene, uint32_t maxClusters, LightSelectio
     for (float& d : c.defaultSelection) d = 0.5f * d + 0.5f * uniform;
   }
   for (size_t light = 0; light < scene.lights.lights.size(); ++light) {
-    scene.lights.lights[light].cluster = c.lightCluster[light];
-    scene.lights.lights[light].clusterPmf = c.lightPmfInCluster[light];
+    selection[light].cluster = c.lightCluster[light];
+    selection[light].clusterPmf = c.lightPmfInCluster[light];
   }
   cms.clusterLights.resize(c.clusterLights.size());
   for (const shared::ClusterGpu& cluster : c.clusters) {

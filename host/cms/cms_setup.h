@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "cms/methods.h"
-#include "scene/light_clusters.h"
+#include "cms/light_clusters.h"
 #include "scene/prepared_scene.h"
 #include "shared/layouts.h"
 
@@ -27,8 +27,10 @@ struct CmsScene {
   std::vector<shared::ClusterLightGpu> clusterLights;  // clusters' lights with in-cluster CDFs
 };
 
-// Clusters the scene's lights and records in each LightGpu its cluster and in-cluster pmf.
-CmsScene setUpClusters(PreparedScene& scene, uint32_t maxClusters, LightSelection defaults);
+// Clusters the scene's lights and records in the method's selection table (one entry per light,
+// scene/light_selection.h) each light's cluster and in-cluster pmf. The scene stays as it is.
+CmsScene setUpClusters(const PreparedScene& scene, std::vector<shared::LightSelectionGpu>& selection,
+                       uint32_t maxClusters, LightSelection defaults);
 
 // Whether the method cms, on a scene with these clusters, is better run as plain MIS (pt-power's
 // estimator): with at most one cluster there is no selection to learn, and the control variate

@@ -5,14 +5,14 @@
 #include <string>
 #include <vector>
 
-#include "scene/light_set.h"
+#include "scene/light_selection.h"
 
 namespace mixtrace {
 
 struct MethodInfo {
   const char* name;        // what --method takes
   const char* summary;     // its line in --help
-  LightSelection selection;  // how the prepared scene picks lights (the clusters' defaults too)
+  LightSelection selection;  // how the method picks lights (the clusters' defaults too)
   bool clusters;           // lights chosen through per-cell cluster selection (docs/estimator.md)
   bool learnSelection;     // the per-cell cluster selection is learned
   bool controlVariate;     // the per-cell control variate is used

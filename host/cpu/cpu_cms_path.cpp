@@ -48,7 +48,7 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
       float pj = 0.0f;
       // A light point that emits nothing towards the vertex counts as no light point (shade.comp).
       if (!isBlack(le)) {
-        j = LIGHT(lightOfTriangle(hit.triangle)).cluster;
+        j = LIGHT_CLUSTER(lightOfTriangle(hit.triangle));
         pj = clusterPointPdf(hit.triangle, origin, sh.position);
       }
       float peff = (j != kNoCell ? clusterSelectPmf(pending.cell, L, j) * pj : 0.0f) + pending.pdf;
@@ -93,7 +93,7 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
       uint light = selectLightInCluster(k, rngNextFloat(rng));
       LightSample ls;
       bool carries = sampleLightPoint(sh.position, light, uEmitter, uPoint, ls);
-      float pk = LIGHT(light).clusterPmf * ls.pdf;
+      float pk = LIGHT_CLUSTER_PMF(light) * ls.pdf;
       ls.pdf = clusterSelectPmf(cell, L, k) * pk;   // c_k p_k: the mixture density of this sample
       const bool cmsTerms = cell != kNoCell;
       if (ls.pdf > 0.0f || cmsTerms) {

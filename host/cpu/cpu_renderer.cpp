@@ -93,19 +93,21 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
 
 }  // namespace
 
-CpuRenderer::CpuRenderer(const PreparedScene& scene, const RenderSettings& settings, const CmsScene* cms)
+CpuRenderer::CpuRenderer(const PreparedScene& scene, const MethodLights& lights, const RenderSettings& settings)
     : scene_(scene),
+      lights_(lights),
       settings_(settings),
       camera_(makeCamera(scene.scene, settings.width, settings.height)),
       lightCount_(uint32_t(scene.lights.lights.size())),
       threads_(settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency())),
       film_(size_t(settings.width) * settings.height) {
   if (settings.maxDepth < 1) throw Error("--max-depth must be at least 1");
-  if (settings.cms.clusters && !cms) throw Error("internal: a CMS method without light clusters");
+  if (lights.selection.size() != lightCount_) throw Error("internal: a light selection table of another scene");
   setUpTraining(settings);
   gSharedScene = &scene_;
-  if (settings.cms.clusters && !cms->clusters.clusters.empty())
-    cms_ = std::make_unique<CpuCmsCells>(*cms, scene.scene.bounds, settings, uint32_t(film_.size()));
+  gLightSelection = &lights_.selection;
+  if (settings.cms.clusters && !lights.cms.clusters.clusters.empty())
+    cms_ = std::make_unique<CpuCmsCells>(lights.cms, scene.scene.bounds, settings, uint32_t(film_.size()));
 }
 
 std::string CpuRenderer::deviceName() const {
@@ -154,6 +156,7 @@ void CpuRenderer::renderTile(uint32_t tile, uint32_t count, RenderCounters& loca
 
 void CpuRenderer::renderSamples(uint32_t count) {
   gSharedScene = &scene_;
+  gLightSelection = &lights_.selection;
   gCpuCmsCells = cms_.get();
   if (!cms_) {
     renderPass(count);

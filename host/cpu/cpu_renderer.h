@@ -14,6 +14,7 @@
 #include <memory>
 #include <vector>
 
+#include "cms/method_lights.h"
 #include "cpu/cpu_cms_cells.h"
 #include "render/renderer.h"
 #include "scene/prepared_scene.h"
@@ -22,9 +23,10 @@ namespace mixtrace {
 
 class CpuRenderer : public Renderer {
  public:
-  // `cms` is required for the CMS methods (settings.cms.clusters); a scene without lights has no
-  // clusters and then renders as the plain path tracer, as on the GPU.
-  CpuRenderer(const PreparedScene& scene, const RenderSettings& settings, const CmsScene* cms = nullptr);
+  // `lights` is the method's light data beside the scene (its selection table; the light clusters,
+  // used when settings.cms.clusters); a scene without lights has no clusters and then renders as
+  // the plain path tracer, as on the GPU. Both are read while rendering: they must outlive this.
+  CpuRenderer(const PreparedScene& scene, const MethodLights& lights, const RenderSettings& settings);
 
   void renderSamples(uint32_t count) override;
   uint32_t samplesPerPixel() const override { return spp_; }
@@ -45,6 +47,7 @@ class CpuRenderer : public Renderer {
   std::vector<glm::vec3> filmMeans() const;
 
   const PreparedScene& scene_;
+  const MethodLights& lights_;
   RenderSettings settings_;
   shared::CameraGpu camera_;
   uint32_t lightCount_;

@@ -19,14 +19,15 @@ uint32_t groupsFor(uint32_t n) { return (n + shared::kWorkgroupSize - 1) / share
 
 }  // namespace
 
-WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const RenderSettings& s,
-                                     const CmsScene* cms)
+WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const MethodLights& lights,
+                                     const RenderSettings& s)
     : ctx_(ctx),
       settings_(s),
       lightCount_(uint32_t(scene.lights.lights.size())),
       pixelCount_(s.width * s.height),
       pathCount_(std::min(s.width * s.height, s.maxPathsPerChunk)),
       scene_(ctx, scene, makeCamera(scene.scene, s.width, s.height)),
+      lightSelection_(makeBuffer(ctx, lights.selection, "light selection")),
       set_(ctx, BINDING_COUNT, sizeof(shared::PassConstants)),
       rayOrigin_(ctx, size_t(pathCount_) * sizeof(glm::vec3), "path state (ray origins)"),
       rayDirection_(ctx, size_t(pathCount_) * sizeof(glm::vec3), "path state (ray directions)"),
@@ -41,9 +42,11 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
       film_(ctx, size_t(pixelCount_) * 2 * sizeof(glm::vec3), "film (" + std::to_string(s.width) + "x" + std::to_string(s.height) + ")", true),
       timer_(ctx, 4096) {
   if (s.maxDepth < 1) throw Error("--max-depth must be at least 1");
-  if (s.cms.clusters && !cms) throw Error("internal: a CMS method without light clusters");
+  if (lights.selection.size() != lightCount_) throw Error("internal: a light selection table of another scene");
+  const CmsScene* cms = s.cms.clusters ? &lights.cms : nullptr;
   setUpTraining(s);
   scene_.bindTo(set_);
+  set_.bind(BINDING_LIGHT_SELECTION, lightSelection_);
   // CMS buffers (placeholders of one element for the other methods, so every binding is valid).
   const bool useCms = s.cms.clusters && cms && !cms->clusters.clusters.empty();
   clusterCount_ = useCms ? uint32_t(cms->clusters.clusters.size()) : 1;

@@ -13,6 +13,7 @@
 #include "render/gpu_scene.h"
 #include "shared/bindings.h"
 #include "cms/gpu_solver.h"
+#include "cms/method_lights.h"
 #include "render/renderer.h"
 #include "scene/prepared_scene.h"
 #include "vulkan/buffer.h"
@@ -25,9 +26,10 @@ class VulkanContext;
 
 class WavefrontRenderer : public Renderer {
  public:
-  // `cms` holds the light clusters when settings.cms.clusters (learned, cv, cms); else nullptr.
-  WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const RenderSettings& settings,
-                    const CmsScene* cms = nullptr);
+  // `lights` is the method's light data beside the scene (its selection table; the light clusters,
+  // used when settings.cms.clusters: learned, cv, cms).
+  WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const MethodLights& lights,
+                    const RenderSettings& settings);
   ~WavefrontRenderer() override;
 
   void renderSamples(uint32_t count) override;
@@ -80,6 +82,7 @@ class WavefrontRenderer : public Renderer {
   uint32_t spp_ = 0;
   uint32_t gatheringSamples_ = 0;   // CMS: sample passes that gathered statistics
   GpuScene scene_;
+  Buffer lightSelection_;   // the method's LightSelectionGpu per light, beside the scene's lights
   DescriptorSet set_;
   Buffer rayOrigin_, rayDirection_, throughput_, radiance_, rng_, misPdf_, hits_, rayQueue_, shadowQueue_, queueState_, film_;
   // Controlled mixture sampling: cell table, statistics, solution, clusters, per-path state of the

@@ -28,21 +28,6 @@ glm::vec3 averageEmission(const Scene& scene, const MaterialGpu& m) {
   return e;
 }
 
-// Fills selectPmf/selectCdf from unnormalised weights; uniform when all weights are zero.
-void setSelection(std::vector<shared::LightGpu>& lights, const std::vector<double>& weights) {
-  double total = 0.0;
-  for (double w : weights) total += w;
-  double cdf = 0.0;
-  for (size_t i = 0; i < lights.size(); ++i) {
-    double pmf = total > 0.0 ? weights[i] / total : 1.0 / double(lights.size());
-    cdf += pmf;
-    lights[i].selectPmf = float(pmf);
-    lights[i].selectCdf = float(cdf);
-  }
-  // The last CDF entry is exactly 1 so that u in [0, 1) always finds a light.
-  if (!lights.empty()) lights.back().selectCdf = 1.0f;
-}
-
 }  // namespace
 
 bool LightSet::hasArea() const {
@@ -63,7 +48,7 @@ double punctualLightPower(const PunctualLight& light, float sceneRadius) {
   }
 }
 
-LightSet buildLightSet(const Scene& scene, const std::vector<uint32_t>& triangleOrder, LightSelection selection) {
+LightSet buildLightSet(const Scene& scene, const std::vector<uint32_t>& triangleOrder) {
   LightSet set;
   set.triangleEmitter.assign(triangleOrder.size(), -1);
 
@@ -80,7 +65,6 @@ LightSet buildLightSet(const Scene& scene, const std::vector<uint32_t>& triangle
   }
   set.zeroPowerPrimitives = uint32_t(primitiveSeen.size() - byPrimitive.size());
 
-  std::vector<double> weights;
   for (auto& [primitive, tris] : byPrimitive) {
     shared::LightGpu light{};
     light.kind = shared::kLightArea;
@@ -131,15 +115,6 @@ LightSet buildLightSet(const Scene& scene, const std::vector<uint32_t>& triangle
     set.lights.push_back(light);
     set.power.push_back(power);
   }
-
-  // Without clusters every light is its own technique (methods with clusters overwrite these).
-  for (uint32_t i = 0; i < set.lights.size(); ++i) {
-    set.lights[i].cluster = i;
-    set.lights[i].clusterPmf = 1.0f;
-  }
-  if (selection == LightSelection::Power) weights = set.power;
-  else weights.assign(set.lights.size(), 1.0);
-  setSelection(set.lights, weights);
 
   if (set.zeroPowerPrimitives > 0)
     warn(std::to_string(set.zeroPowerPrimitives) + " emissive primitive(s) have zero area and emit nothing");

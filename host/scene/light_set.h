@@ -1,7 +1,7 @@
 #pragma once
 // The lights of a scene as the GPU (and the CPU code) sample them: one light per emissive
 // primitive instance (its triangles are emitters chosen by area * radiance) plus the punctual
-// lights, with the light-selection distribution of the method.
+// lights. How a method picks among them is not part of the set (scene/light_selection.h).
 #include <cstdint>
 #include <vector>
 
@@ -9,8 +9,6 @@
 #include "shared/layouts.h"
 
 namespace mixtrace {
-
-enum class LightSelection { Uniform, Power };
 
 struct LightSet {
   std::vector<shared::LightGpu> lights;
@@ -23,7 +21,7 @@ struct LightSet {
 };
 
 // triangleOrder: BVH order -> scene triangle index (Bvh::triangleOrder).
-LightSet buildLightSet(const Scene& scene, const std::vector<uint32_t>& triangleOrder, LightSelection selection);
+LightSet buildLightSet(const Scene& scene, const std::vector<uint32_t>& triangleOrder);
 
 // Power of a light in luminance units, as used for power-proportional selection.
 double punctualLightPower(const PunctualLight& light, float sceneRadius);

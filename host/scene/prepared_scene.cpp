@@ -1,17 +1,24 @@
 #include "scene/prepared_scene.h"
 
+#include <atomic>
 #include <cmath>
 
 #include "util/error.h"
 #include "util/log.h"
 
 namespace mixtrace {
+namespace {
+std::atomic<uint64_t> gPreparedScenes{0};
+}  // namespace
 
-PreparedScene prepareScene(Scene scene, LightSelection selection) {
+uint64_t preparedSceneCount() { return gPreparedScenes.load(); }
+
+PreparedScene prepareScene(Scene scene) {
   if (scene.triangles.empty()) throw Error(scene.name + " contains no triangles");
+  ++gPreparedScenes;
   PreparedScene p;
   p.bvh = buildBvh(cornersOf(scene.triangles));
-  p.lights = buildLightSet(scene, p.bvh.triangleOrder, selection);
+  p.lights = buildLightSet(scene, p.bvh.triangleOrder);
   p.features = deriveFeatures(scene, p.lights);
   if (p.lights.lights.empty()) warn(scene.name + " has no lights: the image will be black");
 

@@ -1,7 +1,8 @@
 #pragma once
-// A loaded scene made ready for rendering: BVH built (triangles in BVH order), lights and their
-// selection distribution, feature set, and every flat array the shaders read. Both backends
-// render from this.
+// A loaded scene made ready for rendering: BVH built (triangles in BVH order), lights, feature set,
+// and every flat array the shaders read. Both backends render from this. It does not depend on
+// the method: built once, it serves every method, whose light selection and clusters are tables
+// beside it (cms/method_lights.h), so switching methods builds no BVH.
 #include <cstdint>
 #include <vector>
 
@@ -23,7 +24,11 @@ struct PreparedScene {
   std::vector<uint32_t> texels;
 };
 
-PreparedScene prepareScene(Scene scene, LightSelection selection);
+PreparedScene prepareScene(Scene scene);
+
+// How many scenes this process has prepared (each one a BVH build): lets the tests check that
+// setting up a method, or switching to one, prepares none.
+uint64_t preparedSceneCount();
 
 // The camera used when the file has none and the command line sets none: the bounding sphere
 // framed from +Z, looking down -Z (its target is the bounds' centre).

@@ -6,12 +6,11 @@
 
 namespace mixtrace {
 
-MethodSetup setUpMethod(const Scene& scene, const RenderOptions& o, const std::string& method) {
+MethodSetup setUpMethod(const PreparedScene& prepared, const RenderOptions& o, const std::string& method) {
   // The option parser admits only the table's methods; a name from elsewhere is a bug.
   const MethodInfo* row = findMethod(method);
   if (!row) throw Error("unknown method '" + method + "'");
   MethodSetup m;
-  m.prepared = prepareScene(scene, row->selection);
   RenderSettings& s = m.settings;
   s.width = uint32_t(o.width);
   s.height = uint32_t(o.height);
@@ -23,10 +22,10 @@ MethodSetup setUpMethod(const Scene& scene, const RenderOptions& o, const std::s
   s.relativeWeighting = o.relativeWeighting;
   s.floatAtomics = o.floatAtomics;
   s.trainSpp = uint32_t(o.trainSpp);
-  if (s.cms.clusters) m.cms = setUpClusters(m.prepared, uint32_t(o.maxClusters), s.cms.defaults);
+  m.lights = buildMethodLights(prepared, *row, uint32_t(o.maxClusters));
   m.estimator = method;
-  if (cmsReducesToPlainMis(s.cms, m.cms)) {
-    info(plainMisNote(m.cms));
+  if (cmsReducesToPlainMis(s.cms, m.lights.cms)) {
+    info(plainMisNote(m.lights.cms));
     s.cms = CmsMethod{};
     m.estimator = kPlainMisMethod;
   }

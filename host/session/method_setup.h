@@ -1,26 +1,25 @@
 #pragma once
-// What a renderer for one method needs, from the command line's options: the scene prepared with
-// the method's light selection, the render settings and, for the learning methods, the light
-// clusters. Shared by `render` and `view` (which sets up one per method it shows).
+// What a renderer for one method needs besides the prepared scene, from the command line's
+// options: the render settings and the method's light tables (its light selection and, for the
+// learning methods, the light clusters). Shared by `render` and `view`: both prepare the scene
+// once, and the viewer sets up one method after another on it.
 #include <string>
 
 #include "session/options.h"
-#include "cms/cms_setup.h"
+#include "cms/method_lights.h"
 #include "render/renderer.h"
 #include "scene/prepared_scene.h"
 
 namespace mixtrace {
 
 struct MethodSetup {
-  PreparedScene prepared;
   RenderSettings settings;
-  CmsScene cms;                // clusters when settings.cms.clusters
+  MethodLights lights;         // the selection table; the clusters when the method has them
   std::string estimator;       // what runs: the method, or pt-power where cms reduces to it
-  const CmsScene* clusters() const { return settings.cms.clusters ? &cms : nullptr; }
 };
 
 // `method` overrides o.method (the viewer switches methods). Says so (info line) when cms reduces
-// to plain MIS on a scene with one light cluster.
-MethodSetup setUpMethod(const Scene& scene, const RenderOptions& o, const std::string& method);
+// to plain MIS on a scene with one light cluster. The scene is only read: every method shares it.
+MethodSetup setUpMethod(const PreparedScene& prepared, const RenderOptions& o, const std::string& method);
 
 }  // namespace mixtrace

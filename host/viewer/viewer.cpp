@@ -17,6 +17,7 @@
 #include "output/png_preview.h"
 #include "output/render_output.h"
 #include "render/wavefront_renderer.h"
+#include "scene/prepared_scene.h"
 #include "shared/display.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -44,7 +45,8 @@ std::string splitPartnerOf(const std::string& method) {
   return method == kPlainMisMethod ? kDefaultMethod : kPlainMisMethod;
 }
 
-// One method's renderer and the display pass over its state.
+// One method's renderer and the display pass over its state. The prepared scene is the viewer's,
+// shared by every method: a method's own part is its settings and light tables.
 struct MethodView {
   MethodSetup setup;
   std::unique_ptr<WavefrontRenderer> renderer;
@@ -72,7 +74,7 @@ class Viewer {
   std::vector<MethodView*> visible();
 
   RenderOptions options_;
-  Scene scene_;
+  const PreparedScene prepared_;   // built once: switching methods builds no BVH
   std::string sceneName_;
   Window window_;
   VulkanContext ctx_;
@@ -93,12 +95,12 @@ int windowScale(const RenderOptions& o) { return std::max(1, 640 / std::max(o.wi
 
 Viewer::Viewer(const RenderOptions& o, const std::string& scriptPath)
     : options_(o),
-      scene_(loadSceneForRendering(o.scene.empty() ? defaultScenePath() : o.scene, o)),
+      prepared_(prepareScene(loadSceneForRendering(o.scene.empty() ? defaultScenePath() : o.scene, o))),
       window_(o.width * windowScale(o), o.height * windowScale(o), "mixtrace"),
       ctx_(ContextOptions{o.device, o.validation, window_.vulkanInstanceExtensions(),
                           [this](VkInstance instance) { return window_.createSurface(instance); }}),
       method_(o.method) {
-  sceneName_ = scene_.name;
+  sceneName_ = prepared_.scene.name;
   if (!scriptPath.empty()) {
     script_ = loadInputScript(scriptPath);
     scripted_ = true;
@@ -107,10 +109,10 @@ Viewer::Viewer(const RenderOptions& o, const std::string& scriptPath)
   int w = 0, h = 0;
   window_.framebufferSize(w, h);
   swapchain_ = std::make_unique<Swapchain>(ctx_, uint32_t(std::max(w, 1)), uint32_t(std::max(h, 1)));
-  MethodView& first = view(method_);
-  const PreparedScene& p = first.setup.prepared;
-  camera_ = std::make_unique<CameraController>(makeCamera(p.scene, uint32_t(o.width), uint32_t(o.height)),
-                                               p.scene.bounds.center(), glm::length(p.scene.bounds.extent()));
+  view(method_);
+  const Scene& scene = prepared_.scene;
+  camera_ = std::make_unique<CameraController>(makeCamera(scene, uint32_t(o.width), uint32_t(o.height)),
+                                               scene.bounds.center(), glm::length(scene.bounds.extent()));
   recreateDisplay();
   info("view " + sceneName_ + " on " + ctx_.deviceName() +
        ": keys " + viewerKeyRange() + " method, shift+" + viewerKeyRange() +
@@ -123,8 +125,8 @@ MethodView& Viewer::view(const std::string& method) {
   auto found = views_.find(method);
   if (found != views_.end()) return *found->second;
   auto v = std::make_unique<MethodView>();
-  v->setup = setUpMethod(scene_, options_, method);
-  v->renderer = std::make_unique<WavefrontRenderer>(ctx_, v->setup.prepared, v->setup.settings, v->setup.clusters());
+  v->setup = setUpMethod(prepared_, options_, method);
+  v->renderer = std::make_unique<WavefrontRenderer>(ctx_, prepared_, v->setup.lights, v->setup.settings);
   v->display = std::make_unique<ComputePipeline>(ctx_, "display", v->renderer->descriptors().pipelineLayout(),
                                                  v->renderer->specialization());
   if (display_) v->renderer->bindDisplay(*display_);

@@ -29,6 +29,7 @@ layout(scalar, binding = BINDING_TEXTURES) readonly buffer TexBuf { TextureGpu t
 layout(scalar, binding = BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
 layout(scalar, binding = BINDING_LIGHTS) readonly buffer LightBuf { LightGpu lights[]; };
 layout(scalar, binding = BINDING_EMITTERS) readonly buffer EmitterBuf { EmitterGpu emitters[]; };
+layout(scalar, binding = BINDING_LIGHT_SELECTION) readonly buffer LightSelectionBuf { LightSelectionGpu lightSelection[]; };
 
 layout(scalar, binding = BINDING_RAY_ORIGIN) buffer RayOriginBuf { vec3 rayOrigin[]; };
 layout(scalar, binding = BINDING_RAY_DIRECTION) buffer RayDirBuf { vec3 rayDirection[]; };
@@ -60,3 +61,7 @@ layout(scalar, binding = BINDING_CLUSTER_DEFAULTS) readonly buffer ClusterDefaul
 #define TEXEL(i) texels[i]
 #define LIGHT(i) lights[i]
 #define EMITTER(i) emitters[i]
+#define LIGHT_SELECT_PMF(i) lightSelection[i].pmf
+#define LIGHT_SELECT_CDF(i) lightSelection[i].cdf
+#define LIGHT_CLUSTER(i) lightSelection[i].cluster
+#define LIGHT_CLUSTER_PMF(i) lightSelection[i].clusterPmf

@@ -41,8 +41,11 @@
 #define BINDING_FIRST_CELL 29     // uint[pixels]: the cell of each pixel's first hit (CMS; viewer debug views)
 // The viewer (host/viewer): the display pass's output, packed 8-bit colour per window pixel
 #define BINDING_DISPLAY 30
+// The method's light selection (LightSelectionGpu per light, host/cms/method_lights.h): beside the
+// scene's lights because the scene is prepared once for every method
+#define BINDING_LIGHT_SELECTION 31
 // Lavapipe allows 32 storage buffers per stage: keep BINDING_COUNT <= 32.
-#define BINDING_COUNT 31
+#define BINDING_COUNT 32
 
 // Specialization constants: the scene's feature set (host/scene/features.h fills them).
 #define SPEC_HAS_TEXTURES 0

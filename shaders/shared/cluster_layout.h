@@ -1,7 +1,7 @@
 // Light clusters of controlled mixture sampling (docs/estimator.md §2): one sampling technique per
 // cluster. A cluster's lights are listed contiguously in a separate array (clusterLights, of
 // ClusterLightGpu in layouts.h), so a cluster record is four words. Built on the host by
-// host/scene/light_clusters.cpp; its layout is checked with those of layouts.h
+// host/cms/light_clusters.cpp; its layout is checked with those of layouts.h
 // (host/vulkan/layout_checks.cpp).
 #ifndef MIXTRACE_SHARED_CLUSTER_LAYOUT_H
 #define MIXTRACE_SHARED_CLUSTER_LAYOUT_H

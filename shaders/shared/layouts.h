@@ -82,18 +82,26 @@ const uint kLightSpot = 2u;
 const uint kLightDirectional = 3u;
 
 // A light: an emissive primitive (its triangles are emitters [firstEmitter, +emitterCount)) or a
-// punctual light. selectPmf/selectCdf are the light-selection distribution of the method.
+// punctual light. Only what describes the light: how a method picks it is LightSelectionGpu, in a
+// buffer of the method's beside the scene's.
 struct LightGpu {
   uint kind;
   uint firstEmitter;
   uint emitterCount;
-  float selectPmf;
-  vec3 position;       // point and spot
-  float selectCdf;     // inclusive prefix sum of selectPmf
-  vec3 direction;      // spot and directional: the direction the light travels
   float spotScale;     // glTF spot falloff: clamp(cos * scale + offset, 0, 1)^2
-  vec3 intensity;      // colour * intensity (W/sr, or W/m^2 for directional)
+  vec3 position;       // point and spot
   float spotOffset;
+  vec3 direction;      // spot and directional: the direction the light travels
+  vec3 intensity;      // colour * intensity (W/sr, or W/m^2 for directional)
+};
+
+// How a method picks light i (host/cms/method_lights.h builds one per light of the scene): the
+// light-selection distribution and, for the methods with light clusters, the cluster the light
+// belongs to and its fixed probability inside it. Read through LIGHT_SELECT_PMF(i),
+// LIGHT_SELECT_CDF(i), LIGHT_CLUSTER(i) and LIGHT_CLUSTER_PMF(i).
+struct LightSelectionGpu {
+  float pmf;           // probability of picking the light
+  float cdf;           // inclusive prefix sum of pmf over the lights
   uint cluster;        // its CMS light cluster (its own index when the method has none)
   float clusterPmf;    // fixed probability of the light inside its cluster
 };

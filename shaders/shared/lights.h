@@ -3,7 +3,8 @@
 // the tests that check the returned pdf equals the evaluated one.
 //
 // The includer defines the buffer accessors LIGHT(i), EMITTER(i), TRIANGLE(i), TRIANGLE_SHADING(i),
-// MATERIAL(i) (and TEXTURE(i), TEXEL(i) for texture.h), and the feature switches HAS_TEXTURES,
+// MATERIAL(i) (and TEXTURE(i), TEXEL(i) for texture.h), the method's selection distribution
+// LIGHT_SELECT_PMF(i) and LIGHT_SELECT_CDF(i) (LightSelectionGpu), and the feature switches HAS_TEXTURES,
 // HAS_AREA_LIGHTS, HAS_PUNCTUAL_LIGHTS and SINGLE_LIGHT (specialization constants on the GPU).
 #ifndef MIXTRACE_SHARED_LIGHTS_H
 #define MIXTRACE_SHARED_LIGHTS_H
@@ -35,14 +36,14 @@ SHARED_FN uint selectLight(float u, uint lightCount) {
   uint hi = lightCount - 1u;
   while (lo < hi) {
     uint mid = (lo + hi) >> 1u;
-    if (u < LIGHT(mid).selectCdf) hi = mid; else lo = mid + 1u;
+    if (u < LIGHT_SELECT_CDF(mid)) hi = mid; else lo = mid + 1u;
   }
   return lo;
 }
 
 SHARED_FN float lightSelectPmf(uint light) {
   if (SINGLE_LIGHT) return 1.0f;
-  return LIGHT(light).selectPmf;
+  return LIGHT_SELECT_PMF(light);
 }
 
 SHARED_FN uint selectEmitter(LightGpu l, float u) {

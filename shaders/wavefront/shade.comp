@@ -45,7 +45,7 @@ void main() {
     // A light point that emits nothing towards the vertex (a one-sided emitter's back) counts as
     // no light point at all, for BSDF and light samples alike (see the light sample below).
     if (!isBlack(le)) {
-      j = lights[lightOfTriangle(hit.triangle)].cluster;
+      j = LIGHT_CLUSTER(lightOfTriangle(hit.triangle));
       pj = clusterPointPdf(hit.triangle, rayOrigin[path], sh.position);
     }
     float peff = (j != kNoCell ? clusterSelectPmf(prevCell, L, j) * pj : 0.0) + prevPdfB;
@@ -117,7 +117,7 @@ void main() {
       k = selectCluster(cell, L, uLight);
       uint light = selectLightInCluster(k, rngNextFloat(rng));
       carries = sampleLightPoint(sh.position, light, uEmitter, uPoint, ls);
-      pk = lights[light].clusterPmf * ls.pdf;
+      pk = LIGHT_CLUSTER_PMF(light) * ls.pdf;
       ls.pdf = clusterSelectPmf(cell, L, k) * pk;
     } else {
       carries = sampleLight(sh.position, pc.lightCount, uLight, uEmitter, uPoint, ls);

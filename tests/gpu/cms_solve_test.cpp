@@ -21,6 +21,7 @@
 
 #include "cms/cms_setup.h"
 #include "cms/gpu_solver.h"
+#include "cms/method_lights.h"
 #include "cms/reference_solve.h"
 #include "render/wavefront_renderer.h"
 #include "gltf/gltf_loader.h"
@@ -990,15 +991,16 @@ TEST_F(CmsSolve, SharedSolveCompiledAsCppAgreesWithTheGpu) {
 // The cells after rendering `spp` samples of a shipped scene at 64x48 with `method` on `cells`.
 WavefrontRenderer::CmsCellState renderedCells(VulkanContext& ctx, const std::string& scene, const std::string& method,
                                               uint32_t cells, uint32_t spp) {
-  PreparedScene prepared =
-      prepareScene(loadGltf(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/" + scene), LightSelection::Power);
+  PreparedScene prepared = prepareScene(loadGltf(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/" + scene));
   RenderSettings settings;
   settings.width = 64;
   settings.height = 48;
   settings.cells = cells;
   settings.cms = cmsMethodFor(method);
-  CmsScene cms = setUpClusters(prepared, 16, settings.cms.defaults);
-  WavefrontRenderer renderer(ctx, prepared, settings, &cms);
+  MethodLights lights;
+  lights.selection = buildLightSelection(prepared.lights, LightSelection::Power);
+  lights.cms = setUpClusters(prepared, lights.selection, 16, settings.cms.defaults);
+  WavefrontRenderer renderer(ctx, prepared, lights, settings);
   renderer.renderSamples(spp);
   return renderer.cmsCellState();
 }
@@ -1063,15 +1065,16 @@ TEST_F(CmsSolve, CellsStopGatheringAtTheCap) {
 // (cms/training_schedule.h). Planned 16: solves after 1, 3 and 7; samples 7..15 leave the cells'
 // statistics and counts exactly as the solve after 7 left them. Unplanned, they go on gathering.
 TEST_F(CmsSolve, ThePlannedLastIterationLeavesTheCellsAlone) {
-  PreparedScene prepared =
-      prepareScene(loadGltf(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/veach_mis.gltf"), LightSelection::Power);
+  PreparedScene prepared = prepareScene(loadGltf(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/veach_mis.gltf"));
   RenderSettings settings;
   settings.width = 64;
   settings.height = 48;
   settings.cms = cmsMethodFor("cms");
-  CmsScene cms = setUpClusters(prepared, 16, settings.cms.defaults);
+  MethodLights lights;
+  lights.selection = buildLightSelection(prepared.lights, LightSelection::Power);
+  lights.cms = setUpClusters(prepared, lights.selection, 16, settings.cms.defaults);
   for (bool planned : {true, false}) {
-    WavefrontRenderer renderer(*ctx_, prepared, settings, &cms);
+    WavefrontRenderer renderer(*ctx_, prepared, lights, settings);
     if (planned) renderer.planSamples(16);
     renderer.renderSamples(7);
     const WavefrontRenderer::CmsCellState trained = renderer.cmsCellState();

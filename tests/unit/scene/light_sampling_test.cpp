@@ -22,8 +22,10 @@ class LightSamplingOnScene : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(LightSamplingOnScene, ReturnedPdfEqualsEvaluatedPdf) {
   for (LightSelection selection : {LightSelection::Uniform, LightSelection::Power}) {
-    PreparedScene scene = prepareScene(loadGltf(GetParam()), selection);
+    PreparedScene scene = prepareScene(loadGltf(GetParam()));
+    const std::vector<shared::LightSelectionGpu> table = buildLightSelection(scene.lights, selection);
     gSharedScene = &scene;
+    gLightSelection = &table;
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     const Bounds& b = scene.scene.bounds;
@@ -37,7 +39,7 @@ TEST_P(LightSamplingOnScene, ReturnedPdfEqualsEvaluatedPdf) {
       ASSERT_TRUE(std::isfinite(s.pdf) && s.pdf > 0.0f);
       ASSERT_TRUE(std::isfinite(s.radiance.x) && std::isfinite(s.radiance.y) && std::isfinite(s.radiance.z));
       if (s.isDelta) {
-        EXPECT_FLOAT_EQ(s.pdf, scene.lights.lights[s.light].selectPmf);
+        EXPECT_FLOAT_EQ(s.pdf, table[s.light].pmf);
         continue;
       }
       ++areaSamples;
@@ -50,11 +52,12 @@ TEST_P(LightSamplingOnScene, ReturnedPdfEqualsEvaluatedPdf) {
 }
 
 TEST_P(LightSamplingOnScene, SelectionFollowsPmf) {
-  PreparedScene scene = prepareScene(loadGltf(GetParam()), LightSelection::Power);
+  PreparedScene scene = prepareScene(loadGltf(GetParam()));
+  const std::vector<shared::LightSelectionGpu> lights = buildLightSelection(scene.lights, LightSelection::Power);
   gSharedScene = &scene;
-  const auto& lights = scene.lights.lights;
+  gLightSelection = &lights;
   double pmfSum = 0.0;
-  for (auto& l : lights) pmfSum += l.selectPmf;
+  for (auto& l : lights) pmfSum += l.pmf;
   EXPECT_NEAR(pmfSum, 1.0, 1e-5);
   const int n = 200000;
   std::vector<double> counts(lights.size(), 0.0);
@@ -62,7 +65,7 @@ TEST_P(LightSamplingOnScene, SelectionFollowsPmf) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   for (int i = 0; i < n; ++i) counts[shared::selectLight(u(rng), uint32_t(lights.size()))] += 1.0;
   std::vector<double> expected(lights.size());
-  for (size_t i = 0; i < lights.size(); ++i) expected[i] = n * double(lights[i].selectPmf);
+  for (size_t i = 0; i < lights.size(); ++i) expected[i] = n * double(lights[i].pmf);
   if (lights.size() < 2) return;
   chi2::ChiSquareResult r = chi2::chiSquareTest(counts, expected);
   EXPECT_GT(r.pValue, 1e-3) << "chi2 " << r.statistic << " dof " << r.dof;
@@ -93,8 +96,10 @@ TEST(LightSampling, QuadIrradianceMatchesPolygonFormula) {
   }
   ASSERT_LT(glm::normalize(glm::cross(q[1] - q[0], q[2] - q[0])).y, 0.0f) << "quad must face down";
   for (auto& t : s.triangles) for (auto& p : t.p) s.bounds.grow(p);
-  PreparedScene scene = prepareScene(s, LightSelection::Power);
+  PreparedScene scene = prepareScene(s);
+  const std::vector<shared::LightSelectionGpu> table = buildLightSelection(scene.lights, LightSelection::Power);
   gSharedScene = &scene;
+  gLightSelection = &table;
 
   for (glm::vec3 p : {glm::vec3(0.0f), glm::vec3(0.7f, 0.2f, 0.1f), glm::vec3(-1.5f, 0.5f, 0.3f)}) {
     glm::vec3 n(0.0f, 1.0f, 0.0f);

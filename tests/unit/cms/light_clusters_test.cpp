@@ -1,4 +1,4 @@
-// Light clusters (host/scene/light_clusters.h): on every shipped scene and on synthetic light sets
+// Light clusters (host/cms/light_clusters.h): on every shipped scene and on synthetic light sets
 // (thousands of small quads in spatial groups, punctual lights) the clusters respect the budget,
 // hold every light exactly once, never mix area and delta lights, and carry pmfs that sum to 1;
 // well-separated groups and opposite-facing lights end up apart; 10k lights cluster fast.
@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "cms/light_clusters.h"
 #include "gltf/gltf_loader.h"
-#include "scene/light_clusters.h"
 #include "support/shipped_scenes.h"
 #include "util/error.h"
 
@@ -112,12 +112,12 @@ class SyntheticScene {
     scene_.punctualLights.push_back(l);
   }
 
-  PreparedScene prepare(LightSelection selection = LightSelection::Uniform) {
+  PreparedScene prepare() {
     Scene s = scene_;
     // prepareScene needs a triangle; a small grey one keeps purely punctual scenes valid.
     addTriangleTo(s, glm::vec3(0, -0.01f, 0), glm::vec3(0.01f, -0.01f, 0), glm::vec3(0, -0.01f, 0.01f),
                   glm::vec3(0, 1, 0), 0, primitive_);
-    return prepareScene(std::move(s), selection);
+    return prepareScene(std::move(s));
   }
 
  private:
@@ -146,8 +146,7 @@ glm::vec3 randomUnit(std::mt19937& rng) {
 
 // `groups` spatial groups of small quads (random orientation within a hemisphere around -y,
 // random brightness) plus point, spot and directional lights.
-PreparedScene manyLights(uint32_t quads, uint32_t groups, uint32_t punctual, uint32_t seed,
-                         LightSelection selection = LightSelection::Uniform) {
+PreparedScene manyLights(uint32_t quads, uint32_t groups, uint32_t punctual, uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   SyntheticScene s;
@@ -165,7 +164,7 @@ PreparedScene manyLights(uint32_t quads, uint32_t groups, uint32_t punctual, uin
     uint32_t kind = i % 7 == 6 ? shared::kLightDirectional : i % 2 ? shared::kLightSpot : shared::kLightPoint;
     s.addPunctual(kind, glm::vec3(40.0f * u(rng), 10.0f * u(rng), 40.0f * u(rng)), randomUnit(rng), 1.0f + 50.0f * u(rng));
   }
-  return s.prepare(selection);
+  return s.prepare();
 }
 
 }  // namespace
@@ -173,7 +172,7 @@ PreparedScene manyLights(uint32_t quads, uint32_t groups, uint32_t punctual, uin
 class LightClustersOnScene : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(LightClustersOnScene, ValidForEveryBudget) {
-  PreparedScene scene = prepareScene(loadGltf(GetParam()), LightSelection::Power);
+  PreparedScene scene = prepareScene(loadGltf(GetParam()));
   ASSERT_FALSE(scene.lights.lights.empty());
   bool mixed = scene.lights.hasArea() && scene.lights.hasPunctual();
   for (uint32_t maxClusters : {1u, 2u, 3u, 5u, 8u, 32u}) {
@@ -253,7 +252,8 @@ TEST(LightClusters, OppositeFacingLightsSeparate) {
 }
 
 TEST(LightClusters, OneClusterPerLightWithinBudget) {
-  PreparedScene scene = manyLights(6, 2, 4, 11, LightSelection::Power);
+  PreparedScene scene = manyLights(6, 2, 4, 11);
+  const std::vector<shared::LightSelectionGpu> power = buildLightSelection(scene.lights, LightSelection::Power);
   ASSERT_EQ(scene.lights.lights.size(), 10u);
   for (uint32_t maxClusters : {10u, 11u, 32u}) {
     LightClusters lc = buildLightClusters(scene, maxClusters, LightSelection::Power);
@@ -264,7 +264,7 @@ TEST(LightClusters, OneClusterPerLightWithinBudget) {
       EXPECT_EQ(lc.clusters[i].lightCount, 1u);
       EXPECT_FLOAT_EQ(lc.lightPmfInCluster[i], 1.0f);
       // With one light per cluster, power selection over clusters is the light set's.
-      EXPECT_NEAR(lc.defaultSelection[i], scene.lights.lights[i].selectPmf, 1e-6f);
+      EXPECT_NEAR(lc.defaultSelection[i], power[i].pmf, 1e-6f);
     }
   }
 }
@@ -290,7 +290,8 @@ TEST(LightClusters, InvalidBudgetThrows) {
 }
 
 TEST(LightClusters, DefaultSelections) {
-  PreparedScene scene = manyLights(500, 3, 40, 17, LightSelection::Power);
+  PreparedScene scene = manyLights(500, 3, 40, 17);
+  const std::vector<shared::LightSelectionGpu> selection = buildLightSelection(scene.lights, LightSelection::Power);
   const uint32_t L = 9;
   LightClusters uniform = buildLightClusters(scene, L, ClusterSelection::UniformOverClusters);
   for (float c : uniform.defaultSelection) EXPECT_NEAR(c, 1.0f / L, 1e-6f);
@@ -304,7 +305,7 @@ TEST(LightClusters, DefaultSelections) {
   LightClusters power = buildLightClusters(scene, L, LightSelection::Power);
   for (uint32_t i = 0; i < scene.lights.lights.size(); ++i) {
     float p = power.defaultSelection[power.lightCluster[i]] * power.lightPmfInCluster[i];
-    EXPECT_NEAR(p, scene.lights.lights[i].selectPmf, 1e-5f * scene.lights.lights[i].selectPmf + 1e-9f);
+    EXPECT_NEAR(p, selection[i].pmf, 1e-5f * selection[i].pmf + 1e-9f);
   }
 }
 

@@ -1,4 +1,4 @@
-#include "scene/light_clusters.h"
+#include "cms/light_clusters.h"
 
 #include <algorithm>
 #include <cmath>

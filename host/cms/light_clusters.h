@@ -33,7 +33,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene/light_set.h"
+#include "scene/light_selection.h"
 #include "scene/prepared_scene.h"
 #include "shared/cluster_layout.h"
 #include "shared/cms_layouts.h"

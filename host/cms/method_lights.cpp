@@ -1,0 +1,12 @@
+#include "cms/method_lights.h"
+
+namespace mixtrace {
+
+MethodLights buildMethodLights(const PreparedScene& scene, const MethodInfo& method, uint32_t maxClusters) {
+  MethodLights m;
+  m.selection = buildLightSelection(scene.lights, method.selection);
+  if (method.clusters) m.cms = setUpClusters(scene, m.selection, maxClusters, method.selection);
+  return m;
+}
+
+}  // namespace mixtrace
