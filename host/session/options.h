@@ -19,8 +19,8 @@ namespace mixtrace {
 
 enum class Command { Render, Compare, View, Help, Version, ListDevices };
 
-// Samples per pixel used when neither --spp nor --time is given. The help text quotes it, so the
-// renderer should use this constant rather than its own literal.
+// Samples per pixel used when neither --spp nor --time is given: render's sample target
+// (session/sample_loop.h) and the help both read it.
 constexpr int kDefaultSpp = 16;
 
 // A camera set on the command line, as pbrt's LookAt and Mitsuba's sensor do (--look-from,
@@ -85,7 +85,7 @@ constexpr int kCompareExitInconclusive = 3;   // no difference found, but too li
 
 struct ParsedCommandLine {
   Command command = Command::Help;
-  RenderOptions render;          // render, and view (which takes the same options)
+  RenderOptions render;          // render, and view (which takes most of the same options)
   CompareOptions compare;
   std::string viewScript;        // view --script FILE: replayed input (host/viewer/input.h)
 };
