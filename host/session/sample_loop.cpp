@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 
 #include "session/options.h"
 
@@ -18,7 +19,7 @@ double SampleLoop::steadySeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-SampleLoop::SampleLoop(Renderer& renderer, const SampleTarget& target, Clock clock)
+SampleLoop::SampleLoop(Renderer& renderer, const SampleTarget& target, ClockSeconds clock)
     : renderer_(&renderer),
       target_(target),
       clock_(std::move(clock)),

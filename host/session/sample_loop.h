@@ -33,10 +33,10 @@ SampleTarget sampleTargetFor(const RenderOptions& o);
 class SampleLoop {
  public:
   // Seconds on some steady clock; the tests pass a fake one.
-  using Clock = std::function<double()>;
+  using ClockSeconds = std::function<double()>;
 
   // Plans the renderer's total where the target says so. The renderer must outlive the loop.
-  SampleLoop(Renderer& renderer, const SampleTarget& target, Clock clock = steadySeconds);
+  SampleLoop(Renderer& renderer, const SampleTarget& target, ClockSeconds clock = steadySeconds);
 
   // Renders the next batch; returns false (rendering nothing) once the render is done.
   bool step();
@@ -62,7 +62,7 @@ class SampleLoop {
 
   Renderer* renderer_;
   SampleTarget target_;
-  Clock clock_;
+  ClockSeconds clock_;
   uint32_t targetSpp_;
   uint32_t batch_ = 1;        // the first batch measures
   double seconds_ = 0.0;
