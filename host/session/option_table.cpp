@@ -2,6 +2,7 @@
 
 #include <climits>
 #include <limits>
+#include <utility>
 
 #include "cms/methods.h"
 #include "render/renderer.h"
@@ -94,6 +95,11 @@ OptionRow vector3(const char* name, std::string help, void (*store)(OptionDestin
 
 OptionRow withShortName(OptionRow row, const char* shortName) {
   row.shortName = shortName;
+  return row;
+}
+
+OptionRow withDefault(OptionRow row, std::string value) {
+  row.defaultValue = std::move(value);
   return row;
 }
 
@@ -248,12 +254,9 @@ std::vector<OptionRow> viewAndCompareRows() {
          [](D& d, const V& v) { *d.viewScript = v.text; }),
 
     // Compare
-    [] {
-      OptionRow row = number("--alpha", "A", 0.0, 1.0, true, kForCompare, G::Compare,
-                             "family-wise significance, {range}", [](D& d, const V& v) { d.compare->alpha = v.number; });
-      row.defaultValue = "0.01";
-      return row;
-    }(),
+    withDefault(number("--alpha", "A", 0.0, 1.0, true, kForCompare, G::Compare, "family-wise significance, {range}",
+                       [](D& d, const V& v) { d.compare->alpha = v.number; }),
+                "0.01"),
     number("--max-fail-fraction", "F", 0.0, 1.0, false, kForCompare, G::Compare,
            "tolerate up to F ({range}) of pixel-channels failing instead of max(2, 0.1%)",
            [](D& d, const V& v) { d.compare->maxFailFraction = v.number; }),
