@@ -109,11 +109,23 @@ struct Section {
   std::string heading, before, after;
 };
 
-std::vector<Section> sections() {
+// What view does and its keys. Kept unbroken (tests/unit/methods_test.cpp looks for them):
+// "Keys: 1-5" ending its line, and "shift+1-5 its right-hand method".
+std::string viewIntro() {
   const std::string keys = viewerKeyRange();   // the viewer's method keys
   const std::string nb(1, kNoBreakSpace);
   std::string methods;
   for (const MethodInfo& m : methodTable()) methods += (methods.empty() ? "" : ", ") + std::string(m.name);
+  return "Renders progressively into a window with the same passes as render and takes render's options "
+         "except " + renderOnlyOptions() +
+         " (--width/--height: the film, shown scaled; --spp N: stop accumulating at N; --out: where P saves). "
+         "Keys:" + nb + keys + "\nmethod (" + methods + "); V split view of two methods at equal time, shift+" +
+         keys + nb + "its" + nb + "right-hand" + nb +
+         "method; G or F1-F6 view: image, variance, cells, alpha sum, likely light, cell samples; P save EXR + "
+         "PNG; R reset camera; Esc quit. Mouse: left drag orbit, right drag pan, wheel zoom; W/A/S/D/Q/E fly.";
+}
+
+std::vector<Section> sections() {
   return {
       {OptionGroup::Input, "Input:", "", ""},
       {OptionGroup::Output, "Output:", "",
@@ -127,18 +139,7 @@ std::vector<Section> sections() {
        "", ""},
       {OptionGroup::Sampling, "Sampling:", "", ""},
       {OptionGroup::Execution, "Execution:", "", ""},
-      {OptionGroup::View, "View (mixtrace view [SCENE] [options]):",
-       "Renders progressively into a window with the same passes as render and takes render's options except " +
-           renderOnlyOptions() +
-           " (--width/--height: the film, shown scaled; --spp N: stop accumulating at N; --out: where P saves). "
-           // Unbroken (tests/unit/methods_test.cpp looks for them): "Keys: 1-5" ending its line, and
-           // "shift+1-5 its right-hand method".
-           "Keys:" +
-           nb + keys + "\nmethod (" + methods + "); V split view of two methods at equal time, shift+" + keys + nb +
-           "its" + nb + "right-hand" + nb + "method; G or F1-F6 view: image, variance, cells, alpha sum, likely light, cell "
-           "samples; P save EXR + PNG; R reset camera; Esc quit. Mouse: left drag orbit, right drag pan, wheel "
-           "zoom; W/A/S/D/Q/E fly.",
-       ""},
+      {OptionGroup::View, "View (mixtrace view [SCENE] [options]):", viewIntro(), ""},
       {OptionGroup::Compare, "Compare (mixtrace compare A.exr B.exr [options]):",
        "Both images need the variance channels written by render --variance. Each pixel-channel is z-tested, "
        "z = (a - b) / sqrt(varA + varB), against a threshold corrected for the number of pixel-channels; a few "
