@@ -1,8 +1,6 @@
 #include "app/render_command.h"
 
-#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -10,6 +8,7 @@
 #include "session/default_scene.h"
 #include "session/method_setup.h"
 #include "session/output_plan.h"
+#include "session/sample_loop.h"
 #include "session/scene_camera.h"
 #include "app/stop_on_signal.h"
 #include "output/render_output.h"
@@ -80,30 +79,18 @@ int runRender(const RenderOptions& o) {
        counted(prepared.lights.lights.size(), "light") + "; device " + renderer.deviceName() + "; " +
        prepared.features.describe());
 
-  // Sample passes in batches: one sample first to measure, then batches of about 0.25 s so the
-  // progress line, --time and Ctrl-C react promptly without paying a submission per sample.
-  const bool timed = o.timeSeconds > 0.0;
-  const uint32_t targetSpp = o.spp > 0 ? uint32_t(o.spp) : (timed ? UINT32_MAX : kDefaultSpp);
+  // The sample passes, in batches (session/sample_loop.h).
+  SampleLoop loop(renderer, sampleTargetFor(o));
+  const bool timed = loop.timed();
+  const uint32_t targetSpp = loop.targetSpp();
   const double pixels = double(o.width) * o.height;
   Progress progress(!o.quiet);
   auto renderStart = Clock::now();
-  uint32_t batch = 1;
-  // The learning methods' last iteration gathers no statistics, so they need to know the total; a
-  // time-limited render re-estimates it from its pace (an open-ended plan until it has one).
-  renderer.planSamples(timed ? 0 : targetSpp);
-  while (renderer.samplesPerPixel() < targetSpp) {
-    uint32_t n = std::min(batch, targetSpp - renderer.samplesPerPixel());
-    renderer.renderSamples(n);
-    if (stop.requested()) break;
-    double elapsed = secondsSince(renderStart);
-    if (timed && elapsed >= o.timeSeconds) break;
-    double perSample = elapsed / renderer.samplesPerPixel();
-    if (timed) renderer.planSamples(uint32_t(std::min(double(targetSpp), std::clamp(o.timeSeconds / perSample, 1.0, 1e9))));
-    double budget = timed ? std::min(0.25, o.timeSeconds - elapsed) : 0.25;
-    batch = uint32_t(std::clamp(budget / std::max(perSample, 1e-6), 1.0, 256.0));
-    double fraction = timed ? elapsed / o.timeSeconds : double(renderer.samplesPerPixel()) / targetSpp;
-    progress.update(fraction, std::to_string(renderer.samplesPerPixel()) + (timed ? "" : "/" + std::to_string(targetSpp)) +
-                                  " spp, " + formatRate(renderer.samplesPerPixel() * pixels / elapsed) + " samples/s");
+  while (loop.step()) {
+    if (stop.requested() || loop.outOfTime()) break;
+    const uint32_t spp = renderer.samplesPerPixel();
+    progress.update(loop.fraction(), std::to_string(spp) + (timed ? "" : "/" + std::to_string(targetSpp)) +
+                                         " spp, " + formatRate(spp * pixels / loop.seconds()) + " samples/s");
   }
   double renderSeconds = secondsSince(renderStart);
   progress.finish();

@@ -19,8 +19,8 @@ namespace mixtrace {
 
 enum class Command { Render, Compare, View, Help, Version, ListDevices };
 
-// Samples per pixel used when neither --spp nor --time is given. The help text quotes it, so the
-// renderer should use this constant rather than its own literal.
+// Samples per pixel used when neither --spp nor --time is given: render's sample target
+// (session/sample_loop.h) and the help both read it.
 constexpr int kDefaultSpp = 16;
 
 // A camera set on the command line, as pbrt's LookAt and Mitsuba's sensor do (--look-from,
@@ -32,17 +32,21 @@ struct CameraOptions {
   bool any() const { return lookFrom || lookAt || up || fovDegrees; }
 };
 
+// The options of render and view. Constructed with every option at its default: the option
+// table's (session/option_table.cpp), the one place a default is written. Fields without a row
+// default (spp, time, the paths) start unset.
 struct RenderOptions {
+  RenderOptions();
   std::string scene;             // empty -> default scene (resolved by the caller)
-  std::string out;               // empty -> "<scene stem>.exr" in the current directory; the
+  std::string out;               // --out; empty -> "<scene stem>.exr" in the current directory; the
                                  // extension picks the format (output/render_output.h)
-  int spp = -1;                  // -1: not given
-  double timeSeconds = -1.0;     // -1: not given; with spp too, stop at whichever comes first
-  int width = 320, height = 240;
-  int maxDepth = 5;              // Mitsuba convention, >= 1
-  std::string method = kDefaultMethod;
-  std::string backend = "vulkan";  // vulkan | cpu
-  uint32_t seed = 0;
+  int spp = -1;                  // --spp; -1: not given
+  double timeSeconds = -1.0;     // --time; -1: not given; with spp too, stop at whichever comes first
+  int width, height;             // --width, --height
+  int maxDepth;                  // --max-depth: Mitsuba convention, >= 1
+  std::string method;            // --method: a name of the method table (cms/methods.h)
+  std::string backend;           // --backend: vulkan | cpu
+  uint32_t seed;                 // --seed
   std::string statsPath;         // --stats FILE.json
   std::string device;            // --device INDEX|NAME-SUBSTRING; empty = first suitable device
   bool png = true;               // --no-png disables the preview beside an EXR
@@ -50,21 +54,22 @@ struct RenderOptions {
   bool validation = false;       // --validation: Vulkan validation layer
   bool generalPipelines = false; // --general-pipelines: no specialisation on scene features
   bool variance = false;         // --variance: also write per-pixel variance of the mean
-  int maxClusters = 16;          // --max-clusters: CMS light clusters (techniques), 1..32
-  int cells = 16;                // --cells: CMS cells along the longest scene axis
-  bool relativeWeighting = true; // --relative-weighting on|off: CMS statistics weighting
+  int maxClusters;               // --max-clusters: CMS light clusters (techniques)
+  int cells;                     // --cells: CMS cells along the longest scene axis
+  bool relativeWeighting;        // --relative-weighting on|off: CMS statistics weighting
                                  // (docs/estimator.md §5)
-  int trainSpp = 0;              // --train-spp N: no CMS solve after N spp (0 = no limit)
-  bool floatAtomics = true;      // --float-atomics on|off: CMS statistics with float atomics or CAS loops
+  int trainSpp;                  // --train-spp N: no CMS solve after N spp (0 = no limit)
+  bool floatAtomics;             // --float-atomics on|off: CMS statistics with float atomics or CAS loops
   std::string assetRoot;         // --asset-root DIR: external scene files may lie under DIR (default: scene's folder)
   CameraOptions camera;          // --look-from, --look-at, --up, --fov
 };
 
 // `mixtrace compare`: a statistical test of whether two renders (written with --variance) estimate
-// the same image; see compare/image_compare.h for the rule.
+// the same image; see compare/image_compare.h for the rule. Constructed at the table's defaults.
 struct CompareOptions {
+  CompareOptions();
   std::string a, b;              // the two EXR files; B is the reference for relMSE
-  double alpha = 0.01;           // --alpha: family-wise significance, in (0, 1)
+  double alpha;                  // --alpha: family-wise significance, in (0, 1)
   double maxFailFraction = -1;   // --max-fail-fraction: tolerated failing fraction; < 0 = default rule
   std::string reportJson;        // --json FILE: write the full result as JSON
   bool quiet = false;            // -q/--quiet: no summary line, only the exit code
@@ -80,7 +85,7 @@ constexpr int kCompareExitInconclusive = 3;   // no difference found, but too li
 
 struct ParsedCommandLine {
   Command command = Command::Help;
-  RenderOptions render;          // render, and view (which takes the same options)
+  RenderOptions render;          // render, and view (which takes most of the same options)
   CompareOptions compare;
   std::string viewScript;        // view --script FILE: replayed input (host/viewer/input.h)
 };

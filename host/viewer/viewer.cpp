@@ -13,6 +13,7 @@
 #include "session/default_scene.h"
 #include "session/method_setup.h"
 #include "session/output_plan.h"
+#include "session/sample_loop.h"
 #include "session/scene_camera.h"
 #include "output/png_preview.h"
 #include "output/render_output.h"
@@ -52,8 +53,7 @@ struct MethodView {
   std::unique_ptr<WavefrontRenderer> renderer;
   std::unique_ptr<ComputePipeline> display;
   unsigned cameraVersion = ~0u;
-  double seconds = 0.0;           // rendering time since the last restart
-  uint32_t samplesPerFrame = 1;   // adapted to kFrameBudgetSeconds
+  std::unique_ptr<SampleLoop> samples;   // since the last restart; its seconds() are the method's time
 };
 
 class Viewer {
@@ -206,21 +206,18 @@ void Viewer::render() {
     if (v->cameraVersion != camera_->version()) {
       v->renderer->restart(camera_->camera());
       v->cameraVersion = camera_->version();
-      v->seconds = 0.0;
+      // One batch per frame, sized to the frame budget, up to --spp (session/sample_loop.h).
+      SampleTarget target;
+      target.spp = options_.spp > 0 ? uint32_t(options_.spp) : 0;
+      target.batchSeconds = kFrameBudgetSeconds;
+      target.planTotal = false;
+      v->samples = std::make_unique<SampleLoop>(*v->renderer, target);
     }
   // Equal time: of the methods shown, the one that has had less rendering time goes next.
   MethodView* next = shown[0];
   for (MethodView* v : shown)
-    if (v->seconds < next->seconds) next = v;
-  if (options_.spp > 0 && next->renderer->samplesPerPixel() >= uint32_t(options_.spp)) return;
-  uint32_t n = next->samplesPerFrame;
-  if (options_.spp > 0) n = std::min(n, uint32_t(options_.spp) - next->renderer->samplesPerPixel());
-  const auto start = Clock::now();
-  next->renderer->renderSamples(n);
-  const double dt = secondsSince(start);
-  next->seconds += dt;
-  if (dt < 0.5 * kFrameBudgetSeconds) next->samplesPerFrame = std::min(next->samplesPerFrame * 2, 256u);
-  else if (dt > kFrameBudgetSeconds) next->samplesPerFrame = std::max(next->samplesPerFrame / 2, 1u);
+    if (v->samples->seconds() < next->samples->seconds()) next = v;
+  next->samples->step();
 }
 
 void Viewer::present() {
@@ -290,7 +287,7 @@ void Viewer::save() {
   written.estimator = v.setup.estimator;
   written.scene = sceneName_;
   written.spp = int(v.renderer->samplesPerPixel());
-  written.seconds = v.seconds;
+  written.seconds = v.samples ? v.samples->seconds() : 0.0;
   writeRenderOutput(path, image, &standardError, written, options_.png);
   const std::string preview = previewPathFor(path, options_.png);
   info("saved " + path + (preview.empty() ? "" : " and " + preview) + " (" +
@@ -302,8 +299,9 @@ std::string Viewer::title() const {
     const MethodView& v = *views_.at(method);
     const uint32_t spp = v.renderer->samplesPerPixel();
     char b[160];
-    std::snprintf(b, sizeof(b), "%s: %u spp, %.1f s, %s samples/s", method.c_str(), spp, v.seconds,
-                  formatRate(v.seconds > 0 ? spp * double(options_.width) * options_.height / v.seconds : 0.0).c_str());
+    const double seconds = v.samples ? v.samples->seconds() : 0.0;
+    std::snprintf(b, sizeof(b), "%s: %u spp, %.1f s, %s samples/s", method.c_str(), spp, seconds,
+                  formatRate(seconds > 0 ? spp * double(options_.width) * options_.height / seconds : 0.0).c_str());
     return std::string(b);
   };
   std::string t = "mixtrace - " + sceneName_ + " - " + describe(method_);
@@ -362,8 +360,6 @@ int Viewer::run() {
 int runViewer(const RenderOptions& options, const std::string& scriptPath) {
   setQuiet(options.quiet);
   if (options.backend != "vulkan") throw Error("view renders with the Vulkan backend only (drop --backend cpu)");
-  if (options.timeSeconds > 0.0) throw Error("--time is not used by view (it renders until the window closes)");
-  if (!options.statsPath.empty()) throw Error("--stats is not used by view (press P to save the film)");
   // Where P saves, checked before the window opens rather than when the key is pressed.
   checkViewerOutputs(options, options.scene.empty() ? defaultScenePath() : options.scene);
   Viewer viewer(options, scriptPath);

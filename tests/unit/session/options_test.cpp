@@ -3,10 +3,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <initializer_list>
 #include <string>
 #include <vector>
 
+#include "render/renderer.h"
+#include "session/option_table.h"
+#include "session/option_values.h"
 #include "util/error.h"
 
 namespace mixtrace {
@@ -329,6 +333,155 @@ TEST(Options, HelpTextDocumentsCameraAndOutputFormats) {
   for (const char* needle : {"--look-from X,Y,Z", "--look-at X,Y,Z", "--up X,Y,Z", "--fov DEGREES", ".png or .jpg",
                              "Ctrl-C", "130"})
     EXPECT_NE(help.find(needle), std::string::npos) << "help text lacks: " << needle;
+}
+
+// --- The option table (session/option_table.h): the parser, --help and the defaults all come from
+// its rows, so these tests iterate over the rows rather than name options.
+
+// A command line of `command` (an OptionCommands bit) with `option` and `value` ("" for a flag).
+std::string errorOfRowCommandLine(unsigned command, const std::string& option, const std::string& value) {
+  std::vector<std::string> args = {"mixtrace", command == kForCompare ? "compare" : command == kForView ? "view" : "render"};
+  if (command == kForCompare) args.insert(args.end(), {"a.exr", "b.exr"});
+  args.push_back(value.empty() ? option : option + "=" + value);
+  std::vector<const char*> argv;
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  try {
+    parseCommandLine(int(argv.size()), argv.data());
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+unsigned firstCommandOf(const OptionRow& row) {
+  for (unsigned c : {unsigned(kForRender), unsigned(kForView), unsigned(kForCompare)})
+    if (row.takenBy(c)) return c;
+  return 0;
+}
+
+// The help's entry of `row`: from its line to the next option's, with the wrapping undone.
+std::string helpEntryOf(const std::string& help, const OptionRow& row) {
+  std::string label = row.shortName ? std::string(row.shortName) + ", " : "";
+  label += row.name;
+  if (row.placeholder) label += std::string(" ") + row.placeholder;
+  const std::string compare = row.takenBy(kForCompare) ? "\nCompare (" : "";
+  const size_t section = compare.empty() ? 0 : help.find(compare);
+  const size_t begin = help.find("\n  " + label, section == std::string::npos ? 0 : section);
+  if (begin == std::string::npos) return "";
+  size_t end = help.find("\n  -", begin + 1);
+  const size_t blank = help.find("\n\n", begin + 1);
+  if (blank < end) end = blank;
+  std::string entry = help.substr(begin + 1, end - begin - 1);
+  std::string flat;
+  for (size_t i = 0; i < entry.size(); ++i) {
+    if (entry[i] == '\n') {
+      while (i + 1 < entry.size() && entry[i + 1] == ' ') ++i;
+      flat += ' ';
+    } else {
+      flat += entry[i];
+    }
+  }
+  return flat;
+}
+
+TEST(OptionTable, HelpListsEveryOptionWithItsDefault) {
+  const std::string help = helpText();
+  for (const OptionRow& row : optionTable()) {
+    const std::string entry = helpEntryOf(help, row);
+    ASSERT_FALSE(entry.empty()) << "--help has no entry for " << row.name;
+    if (!row.shownDefault().empty())
+      EXPECT_NE(entry.find("default: " + row.shownDefault()), std::string::npos)
+          << row.name << "'s entry lacks its default '" << row.shownDefault() << "': " << entry;
+    const std::string range = rangeText(row);
+    if (row.kind == ValueKind::Integer || row.kind == ValueKind::Number)
+      EXPECT_NE(entry.find(range), std::string::npos) << row.name << "'s entry lacks its range " << range << ": " << entry;
+  }
+}
+
+TEST(OptionTable, ValuesOutsideEachRangeAreRefusedNamingTheRange) {
+  int checked = 0;
+  for (const OptionRow& row : optionTable()) {
+    const unsigned command = firstCommandOf(row);
+    const std::string name = row.name;
+    const auto refused = [&](const std::string& value, const std::string& needle) {
+      const std::string message = errorOfRowCommandLine(command, name, value);
+      expectOneLineMentioning(message, name);
+      expectOneLineMentioning(message, needle);
+      ++checked;
+    };
+    const auto accepted = [&](const std::string& value) {
+      EXPECT_EQ(errorOfRowCommandLine(command, name, value), "") << name << " " << value;
+    };
+    switch (row.kind) {
+      case ValueKind::Integer:
+        refused(std::to_string(row.minInteger - 1), expectedValue(row));
+        if (row.maxInteger < 0x7fffffffffffffffLL) refused(std::to_string(row.maxInteger + 1), expectedValue(row));
+        EXPECT_NE(expectedValue(row).find(std::to_string(row.minInteger)), std::string::npos) << name;
+        accepted(std::to_string(row.minInteger));
+        accepted(std::to_string(row.maxInteger));
+        break;
+      case ValueKind::Number: {
+        refused(std::to_string(row.minNumber - 1), expectedValue(row));
+        if (std::isfinite(row.maxNumber)) refused(std::to_string(row.maxNumber + 1), expectedValue(row));
+        if (row.openRange) refused(std::to_string(row.minNumber), expectedValue(row));
+        else accepted(std::to_string(row.minNumber));
+        refused("nan", expectedValue(row));
+        break;
+      }
+      case ValueKind::Choice:
+        refused("no-such-value", "no-such-value");
+        for (const std::string& choice : row.choices) {
+          expectOneLineMentioning(errorOfRowCommandLine(command, name, "no-such-value"), choice);
+          accepted(choice);
+        }
+        break;
+      case ValueKind::Vector3:
+        refused("1,2", expectedValue(row));
+        refused("1,2,1e39", expectedValue(row));
+        break;
+      case ValueKind::Text: refused("", "needs a value"); break;
+      case ValueKind::Flag: refused("1", "takes no value"); break;
+    }
+  }
+  EXPECT_GE(checked, int(optionTable().size()));
+}
+
+TEST(OptionTable, AnOptionGivenToTheWrongCommandIsRefused) {
+  int checked = 0;
+  for (const OptionRow& row : optionTable())
+    for (unsigned command : {unsigned(kForRender), unsigned(kForView), unsigned(kForCompare)}) {
+      if (findOptionRow(row.name, command)) continue;   // taken (by this row or its namesake)
+      const std::string message = errorOfRowCommandLine(command, row.name, row.takesValue() ? "1" : "");
+      const std::string commandName = command == kForCompare ? "compare" : command == kForView ? "view" : "render";
+      expectOneLineMentioning(message, row.name);
+      expectOneLineMentioning(message, "not " + commandName);
+      ++checked;
+    }
+  EXPECT_GE(checked, 10);
+  expectOneLineMentioning(errorOf({"view", "--time", "2"}), "--time is for render, not view");
+  expectOneLineMentioning(errorOf({"render", "--script", "s.txt"}), "--script is for view, not render");
+}
+
+// The defaults are the table's, applied through each row's own parser, and the options that are
+// renderer settings default to what a RenderSettings holds: one set of defaults.
+TEST(OptionTable, DefaultsComeFromTheTableAndMatchTheRenderer) {
+  for (const OptionRow& row : optionTable())
+    if (!row.defaultValue.empty()) EXPECT_NO_THROW(parseOptionValue(row, row.defaultValue)) << row.name;
+  const RenderOptions o;
+  const RenderSettings s;
+  EXPECT_EQ(uint32_t(o.width), s.width);
+  EXPECT_EQ(uint32_t(o.height), s.height);
+  EXPECT_EQ(uint32_t(o.maxDepth), s.maxDepth);
+  EXPECT_EQ(o.seed, s.seed);
+  EXPECT_EQ(uint32_t(o.cells), s.cells);
+  EXPECT_EQ(o.relativeWeighting, s.relativeWeighting);
+  EXPECT_EQ(o.floatAtomics, s.floatAtomics);
+  EXPECT_EQ(uint32_t(o.trainSpp), s.trainSpp);
+  EXPECT_EQ(o.generalPipelines, s.generalPipelines);
+  EXPECT_EQ(o.maxClusters, 16);
+  EXPECT_EQ(o.method, kDefaultMethod);
+  EXPECT_DOUBLE_EQ(CompareOptions().alpha, 0.01);
+  EXPECT_EQ(knownMethods().size(), methodTable().size());
 }
 
 }  // namespace
