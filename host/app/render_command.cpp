@@ -48,6 +48,74 @@ void warnIfBlack(const Image& image, const PreparedScene& prepared) {
   }
 }
 
+// The backend the options name, over the prepared scene and the method's light tables.
+std::unique_ptr<Renderer> makeRenderer(const RenderOptions& o, VulkanContext* ctx, const PreparedScene& prepared,
+                                       const MethodSetup& setup) {
+  if (o.backend == "cpu") return std::make_unique<CpuRenderer>(prepared, setup.lights, setup.settings);
+  return std::make_unique<WavefrontRenderer>(*ctx, prepared, setup.lights, setup.settings);
+}
+
+struct RenderRun {
+  double seconds = 0.0;
+  bool timed = false;
+  uint32_t targetSpp = 0;
+};
+
+// The sample passes, in batches (session/sample_loop.h), with the progress line, until the target,
+// the time budget or a stop request (Ctrl-C).
+RenderRun renderUntilDone(const RenderOptions& o, Renderer& renderer, const StopOnSignal& stop) {
+  SampleLoop loop(renderer, sampleTargetFor(o));
+  RenderRun run;
+  run.timed = loop.timed();
+  run.targetSpp = loop.targetSpp();
+  const double pixels = double(o.width) * o.height;
+  Progress progress(!o.quiet);
+  auto renderStart = Clock::now();
+  while (loop.step()) {
+    if (stop.requested() || loop.outOfTime()) break;
+    const uint32_t spp = renderer.samplesPerPixel();
+    progress.update(loop.fraction(), std::to_string(spp) + (run.timed ? "" : "/" + std::to_string(run.targetSpp)) +
+                                         " spp, " + formatRate(spp * pixels / loop.seconds()) + " samples/s");
+  }
+  run.seconds = secondsSince(renderStart);
+  progress.finish();
+  return run;
+}
+
+// What --stats writes: the render's settings, sizes, counters and timings.
+RenderStats collectStats(const RenderOptions& o, const PreparedScene& prepared, const MethodSetup& setup,
+                         const Renderer& renderer, const RenderRun& run, const RenderCounters& counters) {
+  RenderStats stats;
+  stats.scene = prepared.scene.name;
+  stats.method = o.method;
+  stats.backend = o.backend;
+  stats.device = renderer.deviceName();
+  stats.features = (o.generalPipelines ? FeatureSet::general() : prepared.features).describe();
+  stats.width = uint32_t(o.width);
+  stats.height = uint32_t(o.height);
+  stats.maxDepth = uint32_t(o.maxDepth);
+  stats.seed = o.seed;
+  stats.spp = renderer.samplesPerPixel();
+  stats.targetSpp = run.timed && o.spp <= 0 ? 0 : run.targetSpp;
+  stats.renderSeconds = run.seconds;
+  stats.bvhBuildSeconds = prepared.bvh.buildSeconds;
+  stats.triangles = prepared.scene.triangles.size();
+  stats.bvhNodes = prepared.bvh.nodes.size();
+  stats.lights = prepared.lights.lights.size();
+  stats.extensionRays = counters.extensionRays;
+  stats.shadowRays = counters.shadowRays;
+  stats.nonFiniteSamples = counters.nonFiniteSamples;
+  stats.cmsCellsUsed = counters.cellsUsed;
+  stats.cmsCellTableSize = counters.cellTableSize;
+  stats.cmsVerticesWithoutCell = counters.verticesWithoutCell;
+  stats.cmsClusters = uint32_t(setup.lights.cms.clusters.clusters.size());
+  stats.cmsAtomics = counters.statisticsAtomics;
+  stats.estimator = setup.estimator;
+  stats.cmsGatheringSpp = counters.gatheringSamples;
+  stats.passMs = renderer.passTimesMs();
+  return stats;
+}
+
 }  // namespace
 
 int runRender(const RenderOptions& o) {
@@ -61,94 +129,43 @@ int runRender(const RenderOptions& o) {
   std::unique_ptr<VulkanContext> ctx;
   if (o.backend != "cpu") ctx = std::make_unique<VulkanContext>(ContextOptions{o.device, o.validation});
   const PreparedScene prepared = prepareScene(loadSceneForRendering(scenePath, o));
-  MethodSetup setup = setUpMethod(prepared, o, o.method);
-  const RenderSettings& settings = setup.settings;
-  const CmsScene& cms = setup.lights.cms;
-  const std::string& estimator = setup.estimator;
-  std::unique_ptr<Renderer> backend;
-  if (o.backend == "cpu") {
-    backend = std::make_unique<CpuRenderer>(prepared, setup.lights, settings);
-  } else {
-    backend = std::make_unique<WavefrontRenderer>(*ctx, prepared, setup.lights, settings);
-  }
-  Renderer& renderer = *backend;
-  double setupSeconds = secondsSince(setupStart);
+  const MethodSetup setup = setUpMethod(prepared, o, o.method);
+  const std::unique_ptr<Renderer> renderer = makeRenderer(o, ctx.get(), prepared, setup);
+  const double setupSeconds = secondsSince(setupStart);
   // From here on, Ctrl-C keeps what has been rendered (app/stop_on_signal.h).
   StopOnSignal stop(!o.quiet);
   info("scene " + prepared.scene.name + ": " + counted(prepared.scene.triangles.size(), "triangle") + ", " +
-       counted(prepared.lights.lights.size(), "light") + "; device " + renderer.deviceName() + "; " +
+       counted(prepared.lights.lights.size(), "light") + "; device " + renderer->deviceName() + "; " +
        prepared.features.describe());
 
-  // The sample passes, in batches (session/sample_loop.h).
-  SampleLoop loop(renderer, sampleTargetFor(o));
-  const bool timed = loop.timed();
-  const uint32_t targetSpp = loop.targetSpp();
-  const double pixels = double(o.width) * o.height;
-  Progress progress(!o.quiet);
-  auto renderStart = Clock::now();
-  while (loop.step()) {
-    if (stop.requested() || loop.outOfTime()) break;
-    const uint32_t spp = renderer.samplesPerPixel();
-    progress.update(loop.fraction(), std::to_string(spp) + (timed ? "" : "/" + std::to_string(targetSpp)) +
-                                         " spp, " + formatRate(spp * pixels / loop.seconds()) + " samples/s");
-  }
-  double renderSeconds = secondsSince(renderStart);
-  progress.finish();
+  const RenderRun run = renderUntilDone(o, *renderer, stop);
   // Decided here: a signal during the writes below is only a request to stop early, and the
   // render has already ended.
   const std::string stoppedBy = stop.signalName();
   const int stopExitCode = stop.exitCode();
 
   Image standardError;   // --variance: the standard error of each pixel's mean (shared/film.h)
-  Image image = renderer.readImage(o.variance ? &standardError : nullptr);
-  RenderCounters counters = renderer.counters();
-
-  RenderStats stats;
-  stats.scene = prepared.scene.name;
-  stats.method = o.method;
-  stats.backend = o.backend;
-  stats.device = renderer.deviceName();
-  stats.features = (o.generalPipelines ? FeatureSet::general() : prepared.features).describe();
-  stats.width = uint32_t(o.width);
-  stats.height = uint32_t(o.height);
-  stats.maxDepth = uint32_t(o.maxDepth);
-  stats.seed = o.seed;
-  stats.spp = renderer.samplesPerPixel();
-  stats.targetSpp = timed && o.spp <= 0 ? 0 : targetSpp;
+  Image image = renderer->readImage(o.variance ? &standardError : nullptr);
+  const RenderCounters counters = renderer->counters();
+  RenderStats stats = collectStats(o, prepared, setup, *renderer, run, counters);
   stats.interruptedBy = stoppedBy;
-  stats.renderSeconds = renderSeconds;
   stats.setupSeconds = setupSeconds;
-  stats.bvhBuildSeconds = prepared.bvh.buildSeconds;
-  stats.triangles = prepared.scene.triangles.size();
-  stats.bvhNodes = prepared.bvh.nodes.size();
-  stats.lights = prepared.lights.lights.size();
-  stats.extensionRays = counters.extensionRays;
-  stats.shadowRays = counters.shadowRays;
-  stats.nonFiniteSamples = counters.nonFiniteSamples;
-  stats.cmsCellsUsed = counters.cellsUsed;
-  stats.cmsCellTableSize = counters.cellTableSize;
-  stats.cmsVerticesWithoutCell = counters.verticesWithoutCell;
-  stats.cmsClusters = uint32_t(cms.clusters.clusters.size());
-  stats.cmsAtomics = counters.statisticsAtomics;
-  stats.estimator = estimator;
-  stats.cmsGatheringSpp = counters.gatheringSamples;
+  stats.validationErrors = ctx ? ctx->validationErrors() : 0;
   if (counters.verticesWithoutCell > 0)
     warn("the CMS cell table (" + std::to_string(counters.cellTableSize) + " cells) was full for " +
          std::to_string(counters.verticesWithoutCell) +
          " vertices; they used no control variate (still unbiased); a smaller --cells fits");
-  stats.validationErrors = ctx ? ctx->validationErrors() : 0;
-  stats.passMs = renderer.passTimesMs();
   if (!stoppedBy.empty())
     warn("stopped by " + stats.interruptedBy + " after " + std::to_string(stats.spp) +
          (stats.targetSpp > 0 ? " of " + std::to_string(stats.targetSpp) : std::string()) +
          " spp; writing what has been rendered");
 
-  RenderOutputInfo written{o.method, estimator, prepared.scene.name, int(stats.spp), int(stats.targetSpp),
-                           renderSeconds, stats.interruptedBy};
+  RenderOutputInfo written{o.method, setup.estimator, prepared.scene.name, int(stats.spp), int(stats.targetSpp),
+                           run.seconds, stats.interruptedBy};
   writeRenderOutput(outputs.image, image, o.variance ? &standardError : nullptr, written, o.png);
   if (!outputs.stats.empty()) writeStatsJson(outputs.stats, stats);
 
-  info("wrote " + outputs.image + ": " + std::to_string(stats.spp) + " spp in " + std::to_string(renderSeconds) +
+  info("wrote " + outputs.image + ": " + std::to_string(stats.spp) + " spp in " + std::to_string(run.seconds) +
        " s, " + formatRate(stats.samplesPerSecond()) + " samples/s, " + formatRate(stats.raysPerSecond()) + " rays/s");
   warnIfBlack(image, prepared);
   if (stats.nonFiniteSamples > 0)
