@@ -23,6 +23,7 @@
 #include "util/log.h"
 #include "util/timing.h"
 #include "viewer/camera_controller.h"
+#include "viewer/display_pass.h"
 #include "viewer/input.h"
 #include "viewer/swapchain.h"
 #include "viewer/window.h"
@@ -49,7 +50,7 @@ std::string splitPartnerOf(const std::string& method) {
 struct MethodView {
   MethodSetup setup;
   std::unique_ptr<WavefrontRenderer> renderer;
-  std::unique_ptr<ComputePipeline> display;
+  std::unique_ptr<DisplayPass> display;
   unsigned cameraVersion = ~0u;
   double seconds = 0.0;           // rendering time since the last restart
   uint32_t samplesPerFrame = 1;   // adapted to kFrameBudgetSeconds
@@ -126,9 +127,8 @@ MethodView& Viewer::view(const std::string& method) {
   auto v = std::make_unique<MethodView>();
   v->setup = setUpMethod(scene_, options_, method);
   v->renderer = std::make_unique<WavefrontRenderer>(ctx_, v->setup.prepared, v->setup.settings, v->setup.clusters());
-  v->display = std::make_unique<ComputePipeline>(ctx_, "display", v->renderer->descriptors().pipelineLayout(),
-                                                 v->renderer->specialization());
-  if (display_) v->renderer->bindDisplay(*display_);
+  v->display = std::make_unique<DisplayPass>(ctx_, *v->renderer);
+  if (display_) v->display->bindWindow(*display_);
   return *views_.emplace(method, std::move(v)).first->second;
 }
 
@@ -142,7 +142,7 @@ void Viewer::recreateDisplay() {
   vkCheck(vkDeviceWaitIdle(ctx_.device()), "vkDeviceWaitIdle");
   const VkExtent2D e = swapchain_->extent();
   display_ = std::make_unique<Buffer>(ctx_, VkDeviceSize(e.width) * e.height * sizeof(uint32_t), "display", true);
-  for (auto& [method, v] : views_) v->renderer->bindDisplay(*display_);
+  for (auto& [method, v] : views_) v->display->bindWindow(*display_);
 }
 
 void Viewer::handle(const InputEvent& e) {
@@ -241,12 +241,7 @@ void Viewer::present() {
       dc.spp = v.renderer->samplesPerPixel();
       dc.divider = i > 0 ? 1u : 0u;
       dc.redFirst = swapchain_->redFirst() ? 1u : 0u;
-      VkDescriptorSet set = v.renderer->descriptors().set();
-      VkPipelineLayout layout = v.renderer->descriptors().pipelineLayout();
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v.display->handle());
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
-      vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(dc), &dc);
-      vkCmdDispatch(cmd, (dc.xEnd - dc.xBegin + 7) / 8, (e.height + 7) / 8, 1);
+      v.display->record(cmd, dc);
     }
   });
   if (!presented) {
