@@ -77,7 +77,7 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
     solver_ = std::make_unique<CellSolver>(ctx);
     solver_->bind(bindings_);
   }
-  if (useCms && s.relativeWeighting) pixelEstimate_ = std::make_unique<PixelEstimatePass>(ctx, spec, bindings_);
+  if (useCms && s.relativeWeighting) pixelEstimatePass_ = std::make_unique<PixelEstimatePass>(ctx, spec, bindings_);
   generate_ = std::make_unique<GeneratePass>(ctx, spec, bindings_);
   prepare_ = std::make_unique<PreparePass>(ctx, spec, bindings_);
   intersect_ = std::make_unique<IntersectPass>(ctx, spec, bindings_);
@@ -162,8 +162,8 @@ void WavefrontRenderer::recordSolve(VkCommandBuffer cmd, bool timed) {
   // The solve also restarts the statistics of cells whose selection changed (shared/cms_solve.h).
   solver_->record(cmd, params);
   if (timed) timer_.mark(cmd, "solve");
-  if (pixelEstimate_ && timed)   // (untimed: the set-up solve, before any film exists)
-    pixelEstimate_->record(cmd, timer_, shared::PixelEstimateConstants{pixelCount_});
+  if (pixelEstimatePass_ && timed)   // (untimed: the set-up solve, before any film exists)
+    pixelEstimatePass_->record(cmd, timer_, shared::PixelEstimateConstants{pixelCount_});
 }
 
 void WavefrontRenderer::renderSamples(uint32_t count) {

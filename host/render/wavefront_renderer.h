@@ -96,7 +96,7 @@ class WavefrontRenderer : public Renderer {
   BufferBindings bindings_;     // buffers_ and the scene's, by binding number: what the passes bind
   std::vector<uint32_t> spec_;  // the pipelines' specialization constants
   std::unique_ptr<CellSolver> solver_;
-  std::unique_ptr<PixelEstimatePass> pixelEstimate_;
+  std::unique_ptr<PixelEstimatePass> pixelEstimatePass_;
   std::unique_ptr<GeneratePass> generate_;
   std::unique_ptr<PreparePass> prepare_;
   std::unique_ptr<IntersectPass> intersect_;

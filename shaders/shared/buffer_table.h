@@ -9,7 +9,9 @@
 //   - the host's allocation (extent x sizeof(Type) bytes, labelled `label` in error messages) and
 //     its binding (host/render/device_buffers.*).
 // Binding numbers are one space for all tables: a buffer has one number in every pass that binds
-// it (host/vulkan/layout_checks.cpp asserts that no two rows share one). Each pass's descriptor set
+// it (host/vulkan/layout_checks.cpp asserts that no two rows share one). Taken: 0-8 (scene),
+// 9-19 (path state, queues, film), 20-29 (CMS), 30 (the viewer's window); 31 is kept for the
+// per-method light-selection buffer. Each pass's descriptor set
 // holds only the rows its interface lists, so the per-stage limit on storage buffers (32 on
 // lavapipe) applies to one pass, not to the sum of all.
 //
