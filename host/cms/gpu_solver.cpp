@@ -6,13 +6,14 @@
 #include "shared/layouts.h"
 #include "util/error.h"
 #include "vulkan/context.h"
+#include "vulkan/pipeline.h"
 
 namespace mixtrace {
 
-// SolveParams fits the shared push-constant range: checked in vulkan/layout_checks.cpp.
+// SolveParams fits the guaranteed push-constant range: checked in vulkan/layout_checks.cpp.
 
-CellSolver::CellSolver(VulkanContext& ctx, DescriptorSet& set)
-    : ctx_(ctx), set_(set), pipeline_(ctx, "solve", set.pipelineLayout(), {}) {}
+CellSolver::CellSolver(VulkanContext& ctx)
+    : ctx_(ctx), pass_(ctx, "solve", BINDINGS_OF(SOLVE_BUFFERS), sizeof(shared::SolveParams), {}) {}
 
 void CellSolver::record(VkCommandBuffer cmd, const shared::SolveParams& params) const {
   if (params.clusterCount > shared::kMaxClusters)
@@ -28,7 +29,7 @@ void CellSolver::record(VkCommandBuffer cmd, const shared::SolveParams& params) 
   if (groupsY > ctx_.properties().limits.maxComputeWorkGroupCount[1])
     throw Error("CMS solve: " + std::to_string(params.cellCount) + " cells exceed the device's dispatch limits");
 
-  recordDispatch(cmd, pipeline_, set_, &params, sizeof(params), groupsX, groupsY);
+  pass_.dispatch(cmd, &params, sizeof(params), groupsX, groupsY);
   computeBarrier(cmd);
 }
 

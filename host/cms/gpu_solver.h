@@ -1,12 +1,12 @@
 #pragma once
 // The CMS solve pass (shaders/cms/solve.comp): between iterations, turns every cell's statistics
-// into control-variate coefficients and a selection pmf. Owns its pipeline; the buffers are the
-// ones bound to the shared descriptor set at BINDING_CELL_STATS, BINDING_CELL_SAMPLES,
-// BINDING_CELL_SOLUTION and BINDING_CLUSTER_DEFAULTS (sizes: shared/cms_layouts.h).
+// into control-variate coefficients and a selection pmf. Owns its pipeline and its descriptor set
+// of the buffers shaders/cms/solve_interface.h lists (the cell statistics, sample counts and
+// solutions and the cluster defaults; sizes: shared/cms_layouts.h).
 #include <vulkan/vulkan.h>
 
-#include "shared/cms_layouts.h"
-#include "vulkan/pipeline.h"
+#include "cms/solve_interface.h"
+#include "vulkan/compute_pass.h"
 
 namespace mixtrace {
 
@@ -14,8 +14,11 @@ class VulkanContext;
 
 class CellSolver {
  public:
-  // `set` must outlive the solver; its push-constant range must hold SolveParams.
-  CellSolver(VulkanContext& ctx, DescriptorSet& set);
+  explicit CellSolver(VulkanContext& ctx);
+
+  // The buffers to solve in: every row of SOLVE_BUFFERS, by binding number (they must outlive
+  // the recorded commands). Binding again points the next recorded solve at others.
+  void bind(const BufferBindings& buffers) { pass_.bind(buffers); }
 
   // Records the solve of params.cellCount cells followed by a compute barrier, so the next pass
   // reads the solution. Statistics written by earlier passes must already be visible (the
@@ -25,8 +28,7 @@ class CellSolver {
 
  private:
   VulkanContext& ctx_;
-  DescriptorSet& set_;
-  ComputePipeline pipeline_;
+  ComputePass pass_;
 };
 
 }  // namespace mixtrace

@@ -1,18 +1,19 @@
 #pragma once
-// The prepared scene's arrays in device storage buffers, uploaded once.
+// The prepared scene's arrays in device storage buffers, uploaded once: the rows of
+// shaders/shared/scene_buffers.h, each member named as the shaders name the buffer.
 #include "scene/prepared_scene.h"
 #include "vulkan/buffer.h"
+#include "vulkan/pipeline.h"
 
 namespace mixtrace {
 
 class VulkanContext;
-class DescriptorSet;
 
 struct GpuScene {
   GpuScene(VulkanContext& ctx, const PreparedScene& scene, const shared::CameraGpu& camera);
-  void bindTo(DescriptorSet& set) const;
+  void offerTo(BufferBindings& buffers) const;   // every row, at its binding number
 
-  Buffer camera, nodes, triangles, shading, materials, textures, texels, lights, emitters;
+  Buffer camera, bvhNodes, triangles, triangleShading, materials, textures, texels, lights, emitters;
 };
 
 }  // namespace mixtrace

@@ -1,21 +1,30 @@
 #pragma once
-// The wavefront path tracer on Vulkan: records the stages (generate, [intersect, shade,
-// shadow] x depth, accumulate) as separate dispatches over queues in device memory; the sizes
-// of later dispatches come from the queues' counters via vkCmdDispatchIndirect. The host only
-// records and submits.
+// The wavefront path tracer on Vulkan: records the passes (generate, [prepare, intersect, shade,
+// prepare, shadow] x depth, accumulate; host/render/passes/, one file each) as separate dispatches
+// over queues in device memory; the sizes of later dispatches come from the queues' counters via
+// vkCmdDispatchIndirect. The renderer owns the buffers (render/device_buffers.h, from the tables
+// of shaders/shared/) and orchestrates: it calls the passes in order and submits.
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "output/image.h"
-#include "render/gpu_scene.h"
-#include "shared/bindings.h"
 #include "cms/gpu_solver.h"
 #include "cms/method_lights.h"
+#include "output/image.h"
+#include "render/device_buffers.h"
+#include "render/gpu_scene.h"
+#include "render/passes/accumulate_pass.h"
+#include "render/passes/generate_pass.h"
+#include "render/passes/intersect_pass.h"
+#include "render/passes/pixel_estimate_pass.h"
+#include "render/passes/prepare_pass.h"
+#include "render/passes/shade_pass.h"
+#include "render/passes/shadow_pass.h"
 #include "render/renderer.h"
 #include "scene/prepared_scene.h"
+#include "shared/bindings.h"
 #include "vulkan/buffer.h"
 #include "vulkan/pass_timer.h"
 #include "vulkan/pipeline.h"
@@ -52,16 +61,16 @@ class WavefrontRenderer : public Renderer {
   CmsCellState cmsCellState() const;
 
   // For the viewer (host/viewer): start accumulating again from `camera` (the film is cleared;
-  // learned cells are world-space and stay), and the state its display pass reads.
+  // learned cells are world-space and stay), and the state its display pass reads: every buffer
+  // by binding number (the film, the first-hit cells, the cells' data...), to bind, not to write.
   void restart(const shared::CameraGpu& camera);
-  const DescriptorSet& descriptors() const { return set_; }
-  void bindDisplay(const Buffer& display) { set_.bind(BINDING_DISPLAY, display); }
+  const BufferBindings& buffers() const { return bindings_; }
   uint32_t clusterCount() const { return clusterCount_; }
   const std::vector<uint32_t>& specialization() const { return spec_; }
 
  private:
-  // `gathering`: this sample pass adds to the CMS statistics (the training schedule); its shade
-  // and shadow passes are then timed apart, so the statistics' cost shows (benchmarks/suite.py).
+  // One sample pass over one chunk of paths. `gathering`: it adds to the CMS statistics (the
+  // training schedule).
   void recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths, bool gathering);
   // Clears the film and the first-hit cells (before the first sample, and on restart).
   void recordClearFilm(VkCommandBuffer cmd);
@@ -69,10 +78,7 @@ class WavefrontRenderer : public Renderer {
   // the pixel estimate the next iteration's statistics are weighted by.
   void recordSolve(VkCommandBuffer cmd, bool timed);
   shared::SolveParams solveParams() const;
-  void dispatch(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, uint32_t groups);
-  // `label` names the pass in the GPU timings (default: the pipeline's name).
-  void dispatchIndirect(VkCommandBuffer cmd, const ComputePipeline& p, const shared::PassConstants& pc, VkDeviceSize offset,
-                        const char* label = nullptr);
+  const Buffer& buffer(uint32_t binding) const { return buffers_[binding]; }
 
   VulkanContext& ctx_;
   RenderSettings settings_;
@@ -82,23 +88,27 @@ class WavefrontRenderer : public Renderer {
   uint32_t spp_ = 0;
   uint32_t gatheringSamples_ = 0;   // CMS: sample passes that gathered statistics
   GpuScene scene_;
-  Buffer lightSelection_;   // the method's LightSelectionGpu per light, beside the scene's lights
-  DescriptorSet set_;
-  Buffer rayOrigin_, rayDirection_, throughput_, radiance_, rng_, misPdf_, hits_, rayQueue_, shadowQueue_, queueState_, film_;
-  // Controlled mixture sampling: cell table, statistics, solution, clusters, per-path state of the
-  // previous vertex's BSDF sample. One-element placeholders when the method does not use them.
+  // Controlled mixture sampling: the cell grid. Its buffers are placeholders of one element when
+  // the method does not use them (shared/cms_state.h).
   bool casAtomics_ = false;   // CMS statistics through compare-and-swap loops, not the *_float_atomics variants
   uint32_t clusterCount_ = 0, cellTableSize_ = 1;
   glm::vec3 gridOrigin_{0.0f};
   float gridInvCellSize_ = 1.0f;
-  Buffer cellKeys_, cellStats_, cellSamples_, cellSolution_, clusterDefaults_, clusters_, clusterLights_;
-  Buffer cvState_, pixelEstimate_, firstCell_;
-  Buffer displayPlaceholder_;   // bound until a viewer binds its display buffer
+  DeviceBuffers buffers_;
+  BufferBindings bindings_;     // buffers_ and the scene's, by binding number: what the passes bind
   std::vector<uint32_t> spec_;  // the pipelines' specialization constants
   std::unique_ptr<CellSolver> solver_;
-  std::unique_ptr<ComputePipeline> pixelEstimatePass_;
-  std::unique_ptr<ComputePipeline> generate_, prepare_, intersect_, shade_, shadow_, accumulate_;
+  std::unique_ptr<PixelEstimatePass> pixelEstimatePass_;
+  std::unique_ptr<GeneratePass> generate_;
+  std::unique_ptr<PreparePass> prepare_;
+  std::unique_ptr<IntersectPass> intersect_;
+  std::unique_ptr<ShadePass> shade_;
+  std::unique_ptr<ShadowPass> shadow_;
+  std::unique_ptr<AccumulatePass> accumulate_;
   PassTimer timer_;
+  // The most timestamps one sample pass (all chunks, and the solve after it) has recorded so far:
+  // what the next one is assumed to need when a submission is filled (renderSamples).
+  uint32_t marksPerSample_ = 0;
   VkFence fence_ = VK_NULL_HANDLE;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
 };

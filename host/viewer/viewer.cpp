@@ -24,6 +24,7 @@
 #include "util/log.h"
 #include "util/timing.h"
 #include "viewer/camera_controller.h"
+#include "viewer/display_pass.h"
 #include "viewer/input.h"
 #include "viewer/swapchain.h"
 #include "viewer/window.h"
@@ -51,7 +52,7 @@ std::string splitPartnerOf(const std::string& method) {
 struct MethodView {
   MethodSetup setup;
   std::unique_ptr<WavefrontRenderer> renderer;
-  std::unique_ptr<ComputePipeline> display;
+  std::unique_ptr<DisplayPass> display;
   unsigned cameraVersion = ~0u;
   std::unique_ptr<SampleLoop> samples;   // since the last restart; its seconds() are the method's time
 };
@@ -127,9 +128,8 @@ MethodView& Viewer::view(const std::string& method) {
   auto v = std::make_unique<MethodView>();
   v->setup = setUpMethod(prepared_, options_, method);
   v->renderer = std::make_unique<WavefrontRenderer>(ctx_, prepared_, v->setup.lights, v->setup.settings);
-  v->display = std::make_unique<ComputePipeline>(ctx_, "display", v->renderer->descriptors().pipelineLayout(),
-                                                 v->renderer->specialization());
-  if (display_) v->renderer->bindDisplay(*display_);
+  v->display = std::make_unique<DisplayPass>(ctx_, *v->renderer);
+  if (display_) v->display->bindWindow(*display_);
   return *views_.emplace(method, std::move(v)).first->second;
 }
 
@@ -143,7 +143,7 @@ void Viewer::recreateDisplay() {
   vkCheck(vkDeviceWaitIdle(ctx_.device()), "vkDeviceWaitIdle");
   const VkExtent2D e = swapchain_->extent();
   display_ = std::make_unique<Buffer>(ctx_, VkDeviceSize(e.width) * e.height * sizeof(uint32_t), "display", true);
-  for (auto& [method, v] : views_) v->renderer->bindDisplay(*display_);
+  for (auto& [method, v] : views_) v->display->bindWindow(*display_);
 }
 
 void Viewer::handle(const InputEvent& e) {
@@ -239,12 +239,7 @@ void Viewer::present() {
       dc.spp = v.renderer->samplesPerPixel();
       dc.divider = i > 0 ? 1u : 0u;
       dc.redFirst = swapchain_->redFirst() ? 1u : 0u;
-      VkDescriptorSet set = v.renderer->descriptors().set();
-      VkPipelineLayout layout = v.renderer->descriptors().pipelineLayout();
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v.display->handle());
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
-      vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(dc), &dc);
-      vkCmdDispatch(cmd, (dc.xEnd - dc.xBegin + 7) / 8, (e.height + 7) / 8, 1);
+      v.display->record(cmd, dc);
     }
   });
   if (!presented) {

@@ -7,13 +7,26 @@
 // embedded SPIR-V) see the same offsets.
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 
 #include <glm/glm.hpp>
 
+#include "cms/pixel_estimate_interface.h"
+#include "cms/solve_interface.h"
+#include "shared/bindings.h"
 #include "shared/cluster_layout.h"
 #include "shared/cms_layouts.h"
 #include "shared/display.h"
 #include "shared/layouts.h"
+#include "tests/cell_lookup_interface.h"
+#include "tests/trace_rays_interface.h"
+#include "viewer/display_interface.h"
+#include "wavefront/accumulate_interface.h"
+#include "wavefront/generate_interface.h"
+#include "wavefront/intersect_interface.h"
+#include "wavefront/prepare_interface.h"
+#include "wavefront/shade_interface.h"
+#include "wavefront/shadow_interface.h"
 
 namespace mixtrace {
 namespace {
@@ -38,19 +51,40 @@ static_assert(sizeof(uint64_t) == 8, "the cell key table holds uint64_t");
 #undef LAYOUT_STRUCT
 #undef LAYOUT_MEMBER
 
-// Push constants. Every pass, the solve and the viewer's display pass share one pipeline layout,
-// whose single range is sizeof(shared::PassConstants) bytes (host/render/wavefront_renderer.cpp
-// creates the DescriptorSet with it); a pass pushes its own struct into the start of that range.
-constexpr size_t kPushConstantRangeBytes = sizeof(shared::PassConstants);
-// VkPhysicalDeviceLimits::maxPushConstantsSize is at least 128 on every Vulkan device.
+// Push constants: every pass's pipeline layout has one range, exactly its own struct
+// (host/vulkan/compute_pass.h), which must fit the 128 bytes every device guarantees
+// (VkPhysicalDeviceLimits::maxPushConstantsSize) and be a multiple of 4 bytes.
 constexpr size_t kGuaranteedPushConstantBytes = 128;
+#define PUSH_CONSTANTS_FIT(S)                                                                    \
+  static_assert(sizeof(shared::S) <= kGuaranteedPushConstantBytes,                              \
+                #S ": push constants beyond the 128 bytes every device guarantees");            \
+  static_assert(sizeof(shared::S) % 4 == 0, #S ": a push-constant range's size is a multiple of 4");
+PUSH_CONSTANTS_FIT(GenerateConstants)
+PUSH_CONSTANTS_FIT(PrepareConstants)
+PUSH_CONSTANTS_FIT(IntersectConstants)
+PUSH_CONSTANTS_FIT(VertexConstants)
+PUSH_CONSTANTS_FIT(AccumulateConstants)
+PUSH_CONSTANTS_FIT(PixelEstimateConstants)
+PUSH_CONSTANTS_FIT(SolveParams)
+PUSH_CONSTANTS_FIT(DisplayConstants)
+PUSH_CONSTANTS_FIT(TraceRaysConstants)
+PUSH_CONSTANTS_FIT(CellLookupConstants)
+#undef PUSH_CONSTANTS_FIT
 
-static_assert(kPushConstantRangeBytes <= kGuaranteedPushConstantBytes,
-              "the push-constant range must fit every device's guaranteed 128 bytes");
-static_assert(kPushConstantRangeBytes % 4 == 0, "a push-constant range's size is a multiple of 4");
-static_assert(sizeof(shared::PassConstants) <= kPushConstantRangeBytes, "PassConstants must fit the range");
-static_assert(sizeof(shared::SolveParams) <= kPushConstantRangeBytes, "SolveParams must fit the range");
-static_assert(sizeof(shared::DisplayConstants) <= kPushConstantRangeBytes, "DisplayConstants must fit the range");
+// Binding numbers: one space for every buffer table (shaders/shared/buffer_table.h), so no two
+// rows may share a number (a pass listing both would bind one buffer in place of the other).
+#define ROW_BINDING(ID, name, binding, access, Type, extent, label) binding,
+constexpr uint32_t kRowBindings[] = {SCENE_BUFFERS(ROW_BINDING) PATH_STATE_BUFFERS(ROW_BINDING)
+                                         CMS_STATE_BUFFERS(ROW_BINDING) METHOD_BUFFERS(ROW_BINDING)
+                                         BUFFER_WINDOW(ROW_BINDING)};
+#undef ROW_BINDING
+constexpr bool bindingsDistinct() {
+  for (size_t i = 0; i < std::size(kRowBindings); ++i)
+    for (size_t j = i + 1; j < std::size(kRowBindings); ++j)
+      if (kRowBindings[i] == kRowBindings[j]) return false;
+  return true;
+}
+static_assert(bindingsDistinct(), "two buffer rows share a binding number");
 
 }  // namespace
 }  // namespace mixtrace

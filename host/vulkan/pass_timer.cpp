@@ -25,13 +25,16 @@ void PassTimer::begin(VkCommandBuffer cmd) {
 }
 
 void PassTimer::mark(VkCommandBuffer cmd, const char* pass) {
-  if (!pool_ || labels_.size() + 1 >= capacity_) return;
+  if (labels_.size() + 1 >= capacity_) return;
   labels_.push_back(pass);
-  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, uint32_t(labels_.size()));
+  if (pool_) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, uint32_t(labels_.size()));
 }
 
 void PassTimer::collect() {
-  if (!pool_ || labels_.empty()) return;
+  if (!pool_ || labels_.empty()) {
+    labels_.clear();
+    return;
+  }
   std::vector<uint64_t> ticks(labels_.size() + 1);
   VkResult r = vkGetQueryPoolResults(ctx_.device(), pool_, 0, uint32_t(ticks.size()), ticks.size() * sizeof(uint64_t),
                                      ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);

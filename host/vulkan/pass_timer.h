@@ -1,6 +1,8 @@
 #pragma once
 // GPU time per pass from Vulkan timestamp queries: a timestamp after each recorded pass; the
 // difference to the previous one is charged to that pass. Totals accumulate over submissions.
+// The timer counts the passes marked since begin() (also on a device without timestamps), so a
+// renderer can size its submissions by what it recorded (room()).
 #include <cstdint>
 #include <map>
 #include <string>
@@ -21,6 +23,8 @@ class PassTimer {
 
   bool enabled() const { return pool_ != VK_NULL_HANDLE; }
   uint32_t capacity() const { return capacity_; }
+  uint32_t marked() const { return uint32_t(labels_.size()); }      // passes marked since begin()
+  uint32_t room() const { return capacity_ - 1 - marked(); }        // marks that still fit
   void begin(VkCommandBuffer cmd);                 // resets the pool, writes the first timestamp
   void mark(VkCommandBuffer cmd, const char* pass); // after a pass
   void collect();                                  // after the submission completed

@@ -1,5 +1,7 @@
 #include "vulkan/pipeline.h"
 
+#include <algorithm>
+
 #include "util/error.h"
 #include "vulkan/buffer.h"
 #include "vulkan/check.h"
@@ -8,10 +10,13 @@
 
 namespace mixtrace {
 
-DescriptorSet::DescriptorSet(VulkanContext& ctx, uint32_t bindingCount, uint32_t pushConstantBytes) : ctx_(ctx) {
+DescriptorSet::DescriptorSet(VulkanContext& ctx, const std::vector<uint32_t>& bindingNumbers,
+                             uint32_t pushConstantBytes)
+    : ctx_(ctx), bindings_(bindingNumbers), pushConstantBytes_(pushConstantBytes) {
+  const uint32_t bindingCount = uint32_t(bindings_.size());
   std::vector<VkDescriptorSetLayoutBinding> bindings(bindingCount);
   for (uint32_t i = 0; i < bindingCount; ++i)
-    bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    bindings[i] = {bindings_[i], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   lci.bindingCount = bindingCount;
   lci.pBindings = bindings.data();
@@ -45,6 +50,8 @@ DescriptorSet::~DescriptorSet() {
 }
 
 void DescriptorSet::bind(uint32_t binding, const Buffer& buffer) {
+  if (std::find(bindings_.begin(), bindings_.end(), binding) == bindings_.end())
+    throw Error("internal: binding " + std::to_string(binding) + " is not in this descriptor set");
   VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   w.dstSet = set_;
@@ -53,6 +60,15 @@ void DescriptorSet::bind(uint32_t binding, const Buffer& buffer) {
   w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   w.pBufferInfo = &info;
   vkUpdateDescriptorSets(ctx_.device(), 1, &w, 0, nullptr);
+}
+
+void DescriptorSet::bindAll(const BufferBindings& buffers) {
+  for (uint32_t binding : bindings_) {
+    const auto found = buffers.find(binding);
+    if (found == buffers.end() || !found->second)
+      throw Error("internal: no buffer offered for binding " + std::to_string(binding));
+    bind(binding, *found->second);
+  }
 }
 
 ComputePipeline::ComputePipeline(VulkanContext& ctx, const std::string& shader, VkPipelineLayout layout,
@@ -93,19 +109,6 @@ void computeBarrier(VkCommandBuffer cmd) {
                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT |
                            VK_PIPELINE_STAGE_TRANSFER_BIT,
                        0, 1, &b, 0, nullptr, 0, nullptr);
-}
-
-}  // namespace mixtrace
-
-namespace mixtrace {
-
-void recordDispatch(VkCommandBuffer cmd, const ComputePipeline& pipeline, const DescriptorSet& set,
-                    const void* constants, uint32_t constantBytes, uint32_t groupsX, uint32_t groupsY) {
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
-  VkDescriptorSet s = set.set();
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout(), 0, 1, &s, 0, nullptr);
-  vkCmdPushConstants(cmd, set.pipelineLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, constantBytes, constants);
-  vkCmdDispatch(cmd, groupsX, groupsY, 1);
 }
 
 }  // namespace mixtrace

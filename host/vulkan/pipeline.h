@@ -1,7 +1,10 @@
 #pragma once
-// The descriptor set all passes share (shaders/shared/bindings.h) and compute pipelines built
-// from embedded SPIR-V with specialization constants.
+// A descriptor set of storage buffers at given binding numbers (the rows a pass's interface
+// header lists, shaders/shared/buffer_table.h) with its pipeline layout, and compute pipelines
+// built from embedded SPIR-V with specialization constants. host/vulkan/compute_pass.h puts the
+// two together for one pass.
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -12,19 +15,30 @@ namespace mixtrace {
 class VulkanContext;
 class Buffer;
 
+// Buffers by binding number: what a renderer (or a test) offers the passes to bind from.
+using BufferBindings = std::map<uint32_t, const Buffer*>;
+
 class DescriptorSet {
  public:
-  DescriptorSet(VulkanContext& ctx, uint32_t bindingCount, uint32_t pushConstantBytes);
+  // One storage buffer at each of `bindings` (any numbers, each once), and a pipeline layout with
+  // this set and a push-constant range of pushConstantBytes (0: none).
+  DescriptorSet(VulkanContext& ctx, const std::vector<uint32_t>& bindings, uint32_t pushConstantBytes);
   ~DescriptorSet();
   DescriptorSet(const DescriptorSet&) = delete;
   DescriptorSet& operator=(const DescriptorSet&) = delete;
 
+  // Throws mixtrace::Error for a binding the set does not have, or (bindAll) cannot find.
   void bind(uint32_t binding, const Buffer& buffer);
+  void bindAll(const BufferBindings& buffers);   // every binding of the set, from `buffers`
+  const std::vector<uint32_t>& bindings() const { return bindings_; }
+  uint32_t pushConstantBytes() const { return pushConstantBytes_; }
   VkDescriptorSet set() const { return set_; }
   VkPipelineLayout pipelineLayout() const { return pipelineLayout_; }
 
  private:
   VulkanContext& ctx_;
+  std::vector<uint32_t> bindings_;
+  uint32_t pushConstantBytes_;
   VkDescriptorSetLayout layout_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
@@ -52,10 +66,5 @@ class ComputePipeline {
 
 // Makes every earlier compute write visible to later compute reads and indirect dispatches.
 void computeBarrier(VkCommandBuffer cmd);
-
-// Binds `pipeline` and `set`, pushes `constants` (any struct the layout's range holds) and
-// dispatches groupsX x groupsY workgroups. For one-off passes (the solve, test kernels).
-void recordDispatch(VkCommandBuffer cmd, const ComputePipeline& pipeline, const DescriptorSet& set,
-                    const void* constants, uint32_t constantBytes, uint32_t groupsX, uint32_t groupsY = 1);
 
 }  // namespace mixtrace

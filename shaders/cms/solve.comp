@@ -5,7 +5,9 @@
 // and its robustness rules: shared/cms_solve.h). One invocation per cell; the cells are spread
 // over a 2D grid of workgroups so that any cell count fits the dispatch limits
 // (host/cms/gpu_solver.cpp).
-#define PUSH_CONSTANT_TYPE SolveParams
+#include "cms/solve_interface.h"
+#define PASS_BUFFERS SOLVE_BUFFERS
+#define PASS_CONSTANTS SolveParams
 #include "gpu/buffers.glsl"
 
 #define CELL_STATS(i) cellStats[i]

@@ -1,5 +1,14 @@
-// Every buffer of the descriptor set (shaders/shared/bindings.h), the push constants and the
-// accessor macros the shared headers use. Included by each wavefront stage.
+// The declarations of one pass: the buffers its interface header lists, its push constants and
+// the accessor macros the shared headers use. The pass includes its interface header (e.g.
+// wavefront/shade_interface.h) and defines, before including this file,
+//   PASS_BUFFERS    its list of buffer rows (shared/buffer_table.h), e.g. SHADE_BUFFERS
+//   PASS_CONSTANTS  its push-constant struct, read as `pc` (none when undefined)
+//   PASS_UNREAD_BUFFERS (optional) the rows that only functions of its headers that it never
+//                   calls name: declared so that GLSL compiles those functions; the compiler
+//                   drops them and the host does not bind them
+// A pass that lists CMS buffers includes gpu/cms_buffers.glsl first (the 64-bit cell keys need
+// its extensions). Binding a buffer a pass does not list is not possible: the host builds each
+// pass's descriptor set from the same list (host/vulkan/compute_pass.h).
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -13,44 +22,33 @@ layout(constant_id = SPEC_HAS_PUNCTUAL_LIGHTS) const bool HAS_PUNCTUAL_LIGHTS = 
 layout(constant_id = SPEC_HAS_METALS) const bool HAS_METALS = true;
 layout(constant_id = SPEC_SINGLE_LIGHT) const bool SINGLE_LIGHT = false;
 
-// Push constants, as `pc`: PassConstants unless the pass defines PUSH_CONSTANT_TYPE before
-// including this file (the CMS solve pass reads SolveParams).
-#ifndef PUSH_CONSTANT_TYPE
-#define PUSH_CONSTANT_TYPE PassConstants
+#ifdef PASS_CONSTANTS
+layout(push_constant, scalar) uniform Push { PASS_CONSTANTS pc; };
 #endif
-layout(push_constant, scalar) uniform Push { PUSH_CONSTANT_TYPE pc; };
 
-layout(scalar, binding = BINDING_CAMERA) readonly buffer CameraBuf { CameraGpu camera; };
-layout(scalar, binding = BINDING_BVH_NODES) readonly buffer NodeBuf { BvhNode bvhNodes[]; };
-layout(scalar, binding = BINDING_TRIANGLES) readonly buffer TriBuf { TriangleGeom triangles[]; };
-layout(scalar, binding = BINDING_TRIANGLE_SHADING) readonly buffer ShadeBuf { TriangleShading triangleShading[]; };
-layout(scalar, binding = BINDING_MATERIALS) readonly buffer MatBuf { MaterialGpu materials[]; };
-layout(scalar, binding = BINDING_TEXTURES) readonly buffer TexBuf { TextureGpu textures[]; };
-layout(scalar, binding = BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
-layout(scalar, binding = BINDING_LIGHTS) readonly buffer LightBuf { LightGpu lights[]; };
-layout(scalar, binding = BINDING_EMITTERS) readonly buffer EmitterBuf { EmitterGpu emitters[]; };
-layout(scalar, binding = BINDING_LIGHT_SELECTION) readonly buffer LightSelectionBuf { LightSelectionGpu lightSelection[]; };
+// One row of a buffer table as a GLSL buffer: `Type name[]`, or `Type name` for a single struct.
+#define BUFFER_ACCESS_READ_ONLY readonly
+#define BUFFER_ACCESS_READ_WRITE
+#define BUFFER_ACCESS_READ_BACK
+#define BUFFER_ELEMENTS_ONE
+#define BUFFER_ELEMENTS_PER_PATH []
+#define BUFFER_ELEMENTS_TWO_PER_PATH []
+#define BUFFER_ELEMENTS_PER_PIXEL []
+#define BUFFER_ELEMENTS_TWO_PER_PIXEL []
+#define BUFFER_ELEMENTS_CELL_SLOTS []
+#define BUFFER_ELEMENTS_CELL_STATS []
+#define BUFFER_ELEMENTS_CELL_SOLUTIONS []
+#define BUFFER_ELEMENTS_CMS_PATHS []
+#define BUFFER_ELEMENTS_CMS_PIXELS []
+#define BUFFER_ELEMENTS_UPLOADED []
+#define BUFFER_ELEMENTS_WINDOW_PIXELS []
+#define DECLARE_BUFFER(ID, name, bindingNumber, access, Type, extent, label) \
+  layout(scalar, binding = bindingNumber) BUFFER_ACCESS_##access buffer name##Buffer { Type name BUFFER_ELEMENTS_##extent; };
 
-layout(scalar, binding = BINDING_RAY_ORIGIN) buffer RayOriginBuf { vec3 rayOrigin[]; };
-layout(scalar, binding = BINDING_RAY_DIRECTION) buffer RayDirBuf { vec3 rayDirection[]; };
-layout(scalar, binding = BINDING_THROUGHPUT) buffer ThroughputBuf { vec3 throughput[]; };
-layout(scalar, binding = BINDING_RADIANCE) buffer RadianceBuf { vec3 radiance[]; };
-layout(scalar, binding = BINDING_RNG) buffer RngBuf { uint rngState[]; };
-layout(scalar, binding = BINDING_MIS_PDF) buffer MisPdfBuf { float misPdf[]; };
-layout(scalar, binding = BINDING_HITS) buffer HitBuf { HitRecord hits[]; };
-
-layout(scalar, binding = BINDING_RAY_QUEUE) buffer RayQueueBuf { uint rayQueue[]; };
-layout(scalar, binding = BINDING_SHADOW_QUEUE) buffer ShadowQueueBuf { ShadowRay shadowQueue[]; };
-layout(scalar, binding = BINDING_QUEUE_STATE) buffer QueueStateBuf { QueueState queues; };
-
-layout(scalar, binding = BINDING_FILM) buffer FilmBuf { vec3 film[]; };  // [2 * pixel] mean, [2 * pixel + 1] sqrt of the sum of squared deviations (shared/film.h)
-
-// Controlled mixture sampling: per-cell statistics and solutions, flat arrays indexed by the
-// functions of shared/cms_layouts.h.
-layout(scalar, binding = BINDING_CELL_STATS) buffer CellStatsBuf { float cellStats[]; };
-layout(scalar, binding = BINDING_CELL_SAMPLES) buffer CellSamplesBuf { uint cellSamples[]; };
-layout(scalar, binding = BINDING_CELL_SOLUTION) buffer CellSolutionBuf { float cellSolution[]; };
-layout(scalar, binding = BINDING_CLUSTER_DEFAULTS) readonly buffer ClusterDefaultsBuf { float clusterDefaults[]; };
+PASS_BUFFERS(DECLARE_BUFFER)
+#ifdef PASS_UNREAD_BUFFERS
+PASS_UNREAD_BUFFERS(DECLARE_BUFFER)
+#endif
 
 #define BVH_NODE(i) bvhNodes[i]
 #define BVH_TRIANGLE(i) triangles[i]

@@ -1,20 +1,14 @@
-// The buffers only the controlled-mixture-sampling variants of the stages read: the cell table,
-// the clusters and the per-path state of the previous vertex's BSDF sample (whose control-variate
-// and statistics terms are paid at the next vertex, once its hit is known).
+// What the controlled-mixture-sampling variants of the passes need before their buffers are
+// declared (gpu/buffers.glsl, from the rows of shared/cms_state.h): the 64-bit cell keys'
+// extensions, the CMS specialization constants and the accessor macros of shared/cms_cells.h and
+// shared/cms_sampling.h. Included before gpu/buffers.glsl by the passes that list CMS buffers.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 #ifdef CMS_FLOAT_ATOMICS
 #extension GL_EXT_shader_atomic_float : require
 #endif
 
-#include "shared/cluster_layout.h"
-
-layout(scalar, binding = BINDING_CELL_KEYS) buffer CellKeyBuf { uint64_t cellKeys[]; };
-layout(scalar, binding = BINDING_CLUSTERS) readonly buffer ClusterBuf { ClusterGpu clusters[]; };
-layout(scalar, binding = BINDING_CLUSTER_LIGHTS) readonly buffer ClusterLightBuf { ClusterLightGpu clusterLights[]; };
-layout(scalar, binding = BINDING_CV_STATE) buffer CvStateBuf { CvPathState cvState[]; };
-layout(scalar, binding = BINDING_PIXEL_ESTIMATE) buffer PixelEstimateBuf { vec3 pixelEstimate[]; };
-layout(scalar, binding = BINDING_FIRST_CELL) buffer FirstCellBuf { uint firstCell[]; };
+#include "shared/bindings.h"
 
 layout(constant_id = SPEC_CMS_SELECTION) const bool CMS_SELECTION = false;
 layout(constant_id = SPEC_CMS_CONTROL_VARIATE) const bool CMS_CONTROL_VARIATE = false;

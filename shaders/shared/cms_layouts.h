@@ -56,8 +56,8 @@ SHARED_FN uint solutionAlphaSum(uint L, uint channel) { return 4u * L + 4u + cha
 const uint kSolveLearnSelection = 1u;   // write learned c_k (methods learned, cms); else the defaults
 const uint kSolveControlVariate = 2u;   // write alpha (methods cv, cms); else alpha = 0, invalid
 
-// Push constants of the solve pass: pushed into the range of the pipeline layout all passes share,
-// sizeof(PassConstants) bytes (host/vulkan/layout_checks.cpp checks that it fits).
+// Push constants of the solve pass (cms/solve_interface.h): the whole range of its pipeline layout
+// (host/vulkan/layout_checks.cpp checks that it fits the guaranteed 128 bytes).
 struct SolveParams {
   uint cellCount;
   uint clusterCount;     // L

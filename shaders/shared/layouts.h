@@ -1,4 +1,6 @@
-// Every struct that crosses the host/GPU boundary, declared once. GLSL reads these buffers with
+// Every struct that crosses the host/GPU boundary in a buffer, declared once (each pass's
+// push-constant struct lives in its interface header, e.g. shaders/wavefront/shade_interface.h;
+// the buffers themselves are the rows of shared/buffer_table.h's tables). GLSL reads these buffers with
 // layout(scalar) (VK_EXT_scalar_block_layout, core in Vulkan 1.2), whose packing is exactly C's
 // for these types (vec3 is 12 bytes, 4-aligned), so C++ (GLM) and GLSL agree byte for byte. The
 // contract is checked twice: host/vulkan/layout_checks.cpp static_asserts every size and offset
@@ -176,30 +178,6 @@ struct QueueState {
 struct ClusterLightGpu {
   uint light;
   float cdf;
-};
-
-// PassConstants.mode of the prepare stage.
-const uint kPrepareRays = 0u;     // before intersect + shade
-const uint kPrepareShadows = 1u;  // before shadow
-
-// Per-dispatch constants (push constants). Its size is the push-constant range of the pipeline
-// layout every pass shares, so it, SolveParams and DisplayConstants must fit it, and it must fit
-// the 128 bytes every device guarantees (host/vulkan/layout_checks.cpp).
-struct PassConstants {
-  uint pathCount;      // paths in this wavefront chunk
-  uint pixelOffset;    // first pixel of the chunk
-  uint sampleIndex;    // sample pass (spp index)
-  uint seed;
-  uint depth;          // 1 = the camera ray's vertex
-  uint maxDepth;       // Mitsuba convention: 1 = emitters seen directly
-  uint queueIn;        // which rayCount/queue is read (0/1)
-  uint lightCount;
-  uint mode;           // pass-specific selector
-  uint clusterCount;   // CMS: L
-  uint cellTableSize;  // CMS: slots of the cell table (a power of two)
-  vec3 gridOrigin;     // CMS: the cell grid's origin (scene bounds minimum)
-  float gridInvCellSize;
-  uint gatherStatistics;  // CMS: 1 when a later solve reads this sample pass's statistics
 };
 
 const uint kWorkgroupSize = 64u;

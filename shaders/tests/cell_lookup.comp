@@ -2,12 +2,12 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
-// Test kernel: every invocation finds or claims the cell of one (position, normal, material) given
-// by the host (rayOrigin = position, rayDirection = normal, rngState = material) and writes the
-// slot over the material in rngState[i].
+// Test kernel: the cell table's concurrent find-or-insert (tests/cell_lookup_interface.h).
+#include "tests/cell_lookup_interface.h"
+#define PASS_BUFFERS CELL_LOOKUP_BUFFERS
+#define PASS_CONSTANTS CellLookupConstants
 #include "gpu/buffers.glsl"
 
-layout(scalar, binding = BINDING_CELL_KEYS) buffer CellKeyBuf { uint64_t cellKeys[]; };
 #define CELL_KEY_LOAD(slot) cellKeys[slot]
 #define CELL_KEY_CAS(slot, expected, desired) atomicCompSwap(cellKeys[slot], expected, desired)
 #include "shared/cms_cells.h"
@@ -16,7 +16,7 @@ layout(local_size_x = kWorkgroupSize) in;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= pc.pathCount) return;
+  if (i >= pc.pointCount) return;
   CellGrid g;
   g.origin = pc.gridOrigin;
   g.invCellSize = pc.gridInvCellSize;

@@ -3,14 +3,14 @@
 // The viewer's display pass: for each window pixel of the columns [xBegin, xEnd), the film pixel
 // under it (the film is letterboxed into the window, nearest pixel) shown as the chosen view,
 // packed as 8-bit sRGB into the display buffer the host copies to the swapchain image.
-#include "shared/display.h"
-#define PUSH_CONSTANT_TYPE DisplayConstants
-#include "gpu/buffers.glsl"
+#include "viewer/display_interface.h"
+#define PASS_BUFFERS DISPLAY_BUFFERS
+#define PASS_UNREAD_BUFFERS DISPLAY_UNREAD_BUFFERS
+#define PASS_CONSTANTS DisplayConstants
 #include "gpu/cms_buffers.glsl"
+#include "gpu/buffers.glsl"
 #include "shared/cms_sampling.h"
 #include "shared/film.h"
-
-layout(scalar, binding = BINDING_DISPLAY) buffer DisplayBuf { uint display[]; };
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -60,5 +60,5 @@ void main() {
   if (pc.divider != 0u && x == pc.xBegin) colour = vec3(1.0);
   uvec3 c = uvec3(clamp(colour, 0.0, 1.0) * 255.0 + 0.5);
   if (pc.redFirst == 0u) c = c.zyx;
-  display[y * pc.windowWidth + x] = c.x | (c.y << 8u) | (c.z << 16u) | (255u << 24u);
+  window[y * pc.windowWidth + x] = c.x | (c.y << 8u) | (c.z << 16u) | (255u << 24u);
 }

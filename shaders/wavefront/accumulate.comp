@@ -5,6 +5,9 @@
 // variance of bright, nearly constant pixels stays meaningful; kept as sqrt(M2) so that it has the
 // image's range, shared/film.h). A NaN or Inf sample is counted and enters as 0: it never reaches
 // the image.
+#include "wavefront/accumulate_interface.h"
+#define PASS_BUFFERS ACCUMULATE_BUFFERS
+#define PASS_CONSTANTS AccumulateConstants
 #include "gpu/buffers.glsl"
 #include "shared/film.h"
 

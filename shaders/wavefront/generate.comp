@@ -1,6 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Stage 1: one camera ray per path of the chunk; resets the path state and fills the first queue.
+#include "wavefront/generate_interface.h"
+#define PASS_BUFFERS GENERATE_BUFFERS
+#define PASS_CONSTANTS GenerateConstants
 #include "gpu/buffers.glsl"
 #include "shared/camera.h"
 #include "shared/rng.h"

@@ -1,6 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Stage 2: closest hit of every queued extension ray against the BVH.
+#include "wavefront/intersect_interface.h"
+#define PASS_BUFFERS INTERSECT_BUFFERS
+#define PASS_CONSTANTS IntersectConstants
 #include "gpu/buffers.glsl"
 #include "shared/bvh_traverse.h"
 #include "shared/constants.h"

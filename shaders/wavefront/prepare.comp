@@ -2,6 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // A single invocation between stages: turns a queue's counter into indirect dispatch arguments
 // (so the host never reads a count back) and resets the counters the next stage appends to.
+#include "wavefront/prepare_interface.h"
+#define PASS_BUFFERS PREPARE_BUFFERS
+#define PASS_CONSTANTS PrepareConstants
 #include "gpu/buffers.glsl"
 
 layout(local_size_x = 1) in;
@@ -15,7 +18,7 @@ void addToCounter(inout uint counter[2], uint n) {
 }
 
 void main() {
-  if (pc.mode == kPrepareRays) {
+  if (pc.queue == kPrepareRays) {
     uint n = queues.rayCount[pc.queueIn];
     queues.rayArgs.x = (n + kWorkgroupSize - 1u) / kWorkgroupSize;
     queues.rayArgs.y = 1u;

@@ -10,8 +10,11 @@
 // pays the control variate: + sum(alpha) - g(z)/p_eff(z) for both samples (docs/estimator.md §3).
 // The BSDF sample's terms depend on what it hits, so they are paid at the start of the next depth's
 // shade.
-#include "gpu/buffers.glsl"
+#include "wavefront/shade_interface.h"
+#define PASS_BUFFERS SHADE_BUFFERS
+#define PASS_CONSTANTS VertexConstants
 #include "gpu/cms_buffers.glsl"
+#include "gpu/buffers.glsl"
 #include "gpu/cms_statistics.glsl"
 #include "shared/bsdf.h"
 #include "shared/cms_sampling.h"

@@ -4,8 +4,12 @@
 // Each path queues at most one shadow ray per depth, so the add needs no atomics. With
 // controlled mixture sampling the ray's sample also adds its terms of b to its cell: the
 // integrand includes visibility, known only here.
-#include "gpu/buffers.glsl"
+#include "wavefront/shadow_interface.h"
+#define PASS_BUFFERS SHADOW_BUFFERS
+#define PASS_UNREAD_BUFFERS SHADOW_UNREAD_BUFFERS
+#define PASS_CONSTANTS VertexConstants
 #include "gpu/cms_buffers.glsl"
+#include "gpu/buffers.glsl"
 #include "gpu/cms_statistics.glsl"
 #include "shared/bvh_traverse.h"
 #include "shared/cms_sampling.h"

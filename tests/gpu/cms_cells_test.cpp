@@ -9,10 +9,11 @@
 #include <gtest/gtest.h>
 
 #include "shared/bindings.h"
+#include "tests/cell_lookup_interface.h"
 #include "shared/layouts.h"
 #include "vulkan/buffer.h"
 #include "vulkan/context.h"
-#include "vulkan/pipeline.h"
+#include "vulkan/compute_pass.h"
 
 namespace {
 std::vector<std::atomic<uint64_t>>* gKeys = nullptr;
@@ -93,8 +94,7 @@ TEST(CmsCells, FullTableDegradesToNoCell) {
 
 TEST(CmsCells, GpuInsertionIsConsistentUnderContention) {
   VulkanContext ctx(ContextOptions{"", true});
-  DescriptorSet set(ctx, BINDING_COUNT, sizeof(shared::PassConstants));
-  ComputePipeline pipeline(ctx, "cell_lookup", set.pipelineLayout(), {});
+  ComputePass pass(ctx, "cell_lookup", BINDINGS_OF(CELL_LOOKUP_BUFFERS), sizeof(shared::CellLookupConstants), {});
   // 32768 points in 500 distinct cells (many threads race for the same cell), table of 1024.
   const uint32_t n = 32768, tableSize = 1024;
   std::mt19937 rng(5);
@@ -113,17 +113,17 @@ TEST(CmsCells, GpuInsertionIsConsistentUnderContention) {
   Buffer p = makeBuffer(ctx, positions, "positions"), nb = makeBuffer(ctx, normals, "normals");
   Buffer slots = makeBuffer(ctx, materials, "materials, then slots");
   Buffer keys = makeBuffer(ctx, std::vector<uint64_t>(tableSize, 0), "cell keys");
-  set.bind(BINDING_RAY_ORIGIN, p);
-  set.bind(BINDING_RAY_DIRECTION, nb);
-  set.bind(BINDING_RNG, slots);
-  set.bind(BINDING_CELL_KEYS, keys);
-  shared::PassConstants pc{};
-  pc.pathCount = n;
+  pass.bind(shared::BINDING_RAY_ORIGIN, p);
+  pass.bind(shared::BINDING_RAY_DIRECTION, nb);
+  pass.bind(shared::BINDING_RNG, slots);
+  pass.bind(shared::BINDING_CELL_KEYS, keys);
+  shared::CellLookupConstants pc{};
+  pc.pointCount = n;
   pc.gridOrigin = glm::vec3(0.0f);
   pc.gridInvCellSize = 1.0f;
   pc.cellTableSize = tableSize;
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    recordDispatch(cmd, pipeline, set, &pc, sizeof(pc), (n + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize);
+    pass.dispatch(cmd, &pc, sizeof(pc), workgroupsFor(n));
   });
   std::vector<uint32_t> got = slots.downloadAll<uint32_t>();
   std::vector<uint64_t> table = keys.downloadAll<uint64_t>();

@@ -107,13 +107,11 @@ class CmsSolve : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     ctx_ = new VulkanContext(ContextOptions{"", true});
-    set_ = new DescriptorSet(*ctx_, BINDING_COUNT, sizeof(shared::PassConstants));
-    solver_ = new CellSolver(*ctx_, *set_);
+    solver_ = new CellSolver(*ctx_);
   }
   static void TearDownTestSuite() {
     EXPECT_EQ(ctx_->validationErrors(), 0u);
     delete solver_;
-    delete set_;
     delete ctx_;
   }
 
@@ -138,10 +136,10 @@ class CmsSolve : public ::testing::Test {
     Buffer samplesBuf = makeBuffer(*ctx_, samples, "cell samples");
     Buffer solutionBuf = makeBuffer(*ctx_, solution, "cell solution");
     Buffer defaultsBuf = makeBuffer(*ctx_, defaults, "cluster defaults");
-    set_->bind(BINDING_CELL_STATS, statsBuf);
-    set_->bind(BINDING_CELL_SAMPLES, samplesBuf);
-    set_->bind(BINDING_CELL_SOLUTION, solutionBuf);
-    set_->bind(BINDING_CLUSTER_DEFAULTS, defaultsBuf);
+    solver_->bind({{shared::BINDING_CELL_STATS, &statsBuf},
+                   {shared::BINDING_CELL_SAMPLES, &samplesBuf},
+                   {shared::BINDING_CELL_SOLUTION, &solutionBuf},
+                   {shared::BINDING_CLUSTER_DEFAULTS, &defaultsBuf}});
     ctx_->submitAndWait([&](VkCommandBuffer cmd) { solver_->record(cmd, params); });
     std::vector<float> out = solutionBuf.downloadAll<float>();
     out.resize(solution.size());
@@ -165,12 +163,10 @@ class CmsSolve : public ::testing::Test {
   }
 
   static VulkanContext* ctx_;
-  static DescriptorSet* set_;
   static CellSolver* solver_;
 };
 
 VulkanContext* CmsSolve::ctx_ = nullptr;
-DescriptorSet* CmsSolve::set_ = nullptr;
 CellSolver* CmsSolve::solver_ = nullptr;
 
 // ---------------------------------------------------------------------------------------------

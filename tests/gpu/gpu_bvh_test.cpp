@@ -12,11 +12,12 @@
 #include "bvh/bvh.h"
 #include "gltf/gltf_loader.h"
 #include "shared/bindings.h"
+#include "tests/trace_rays_interface.h"
 #include "support/shipped_scenes.h"
 #include "shared/layouts.h"
 #include "vulkan/buffer.h"
 #include "vulkan/context.h"
-#include "vulkan/pipeline.h"
+#include "vulkan/compute_pass.h"
 
 using namespace mixtrace;
 namespace fs = std::filesystem;
@@ -58,11 +59,10 @@ double bruteForceClosest(const std::vector<Triangle>& tris, const Ray& r) {
 class GpuTracer {
  public:
   GpuTracer(VulkanContext& ctx, const Bvh& bvh)
-      : ctx_(ctx), set_(ctx, BINDING_COUNT, sizeof(shared::PassConstants)),
-        nodes_(makeBuffer(ctx, bvh.nodes, "nodes")), tris_(makeBuffer(ctx, bvh.triangles, "triangles")),
-        pipeline_(ctx, "trace_rays", set_.pipelineLayout(), {}) {
-    set_.bind(BINDING_BVH_NODES, nodes_);
-    set_.bind(BINDING_TRIANGLES, tris_);
+      : ctx_(ctx), nodes_(makeBuffer(ctx, bvh.nodes, "nodes")), tris_(makeBuffer(ctx, bvh.triangles, "triangles")),
+        pass_(ctx, "trace_rays", BINDINGS_OF(TRACE_RAYS_BUFFERS), sizeof(shared::TraceRaysConstants), {}) {
+    pass_.bind(shared::BINDING_BVH_NODES, nodes_);
+    pass_.bind(shared::BINDING_TRIANGLES, tris_);
   }
 
   // Closest hits; also returns the seconds the dispatch took (wall clock around the submit).
@@ -71,10 +71,10 @@ class GpuTracer {
     for (auto& r : rays) { o.push_back(r.origin); d.push_back(r.direction); }
     Buffer ob = makeBuffer(ctx_, o, "o"), db = makeBuffer(ctx_, d, "d");
     Buffer hb(ctx_, rays.size() * sizeof(shared::HitRecord), "hits");
-    set_.bind(BINDING_RAY_ORIGIN, ob);
-    set_.bind(BINDING_RAY_DIRECTION, db);
-    set_.bind(BINDING_HITS, hb);
-    set_.bind(BINDING_MIS_PDF, hb);
+    pass_.bind(shared::BINDING_RAY_ORIGIN, ob);
+    pass_.bind(shared::BINDING_RAY_DIRECTION, db);
+    pass_.bind(shared::BINDING_HITS, hb);
+    pass_.bind(shared::BINDING_MIS_PDF, hb);
     run(uint32_t(rays.size()), 0, seconds);
     return hb.downloadAll<shared::HitRecord>();
   }
@@ -83,30 +83,29 @@ class GpuTracer {
     std::vector<glm::vec3> o, d;
     for (auto& r : rays) { o.push_back(r.origin); d.push_back(r.direction); }
     Buffer ob = makeBuffer(ctx_, o, "o"), db = makeBuffer(ctx_, d, "d"), tb = makeBuffer(ctx_, tMax, "t");
-    set_.bind(BINDING_RAY_ORIGIN, ob);
-    set_.bind(BINDING_RAY_DIRECTION, db);
-    set_.bind(BINDING_MIS_PDF, tb);
-    set_.bind(BINDING_HITS, tb);
+    pass_.bind(shared::BINDING_RAY_ORIGIN, ob);
+    pass_.bind(shared::BINDING_RAY_DIRECTION, db);
+    pass_.bind(shared::BINDING_MIS_PDF, tb);
+    pass_.bind(shared::BINDING_HITS, tb);
     run(uint32_t(rays.size()), 1, nullptr);
     return tb.downloadAll<float>();
   }
 
  private:
   void run(uint32_t n, uint32_t mode, double* seconds) {
-    shared::PassConstants pc{};
-    pc.pathCount = n;
+    shared::TraceRaysConstants pc{};
+    pc.rayCount = n;
     pc.mode = mode;
     auto start = std::chrono::steady_clock::now();
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-      recordDispatch(cmd, pipeline_, set_, &pc, sizeof(pc), (n + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize);
+      pass_.dispatch(cmd, &pc, sizeof(pc), workgroupsFor(n));
     });
     if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
   VulkanContext& ctx_;
-  DescriptorSet set_;
   Buffer nodes_, tris_;
-  ComputePipeline pipeline_;
+  ComputePass pass_;
 };
 
 std::vector<Ray> randomRays(const Bounds& b, size_t n, uint32_t seed) {

@@ -6,6 +6,7 @@
 // fails here. Nothing is compiled at run time and no device is needed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <filesystem>
 #include <map>
@@ -13,12 +14,24 @@
 #include <string>
 #include <vector>
 
+#include "cms/pixel_estimate_interface.h"
+#include "cms/solve_interface.h"
 #include "shared/cluster_layout.h"
 #include "shared/cms_layouts.h"
 #include "shared/display.h"
 #include "shared/layouts.h"
 #include "support/spirv_reader.h"
+#include "tests/cell_lookup_interface.h"
+#include "tests/trace_rays_interface.h"
+#include "viewer/display_interface.h"
+#include "vulkan/compute_pass.h"
 #include "vulkan/embedded_shaders.h"
+#include "wavefront/accumulate_interface.h"
+#include "wavefront/generate_interface.h"
+#include "wavefront/intersect_interface.h"
+#include "wavefront/prepare_interface.h"
+#include "wavefront/shade_interface.h"
+#include "wavefront/shadow_interface.h"
 
 namespace mixtrace {
 namespace {
@@ -123,29 +136,90 @@ TEST(LayoutContract, BareArraysArePacked) {
   EXPECT_GT(arrays, 0u);
 }
 
-// Every pass pushes its struct into the one range of the shared pipeline layout,
-// sizeof(PassConstants) bytes (host/render/wavefront_renderer.cpp), which every device holds.
-TEST(LayoutContract, PushConstantBlocksFitTheRange) {
-  const std::set<std::string> pushed = {"PassConstants", "SolveParams", "DisplayConstants"};
+// What each module's interface header declares (shaders/*/*_interface.h): the buffers its
+// descriptor set holds, in the order the host builds it, and its push-constant struct.
+struct Interface {
+  std::vector<uint32_t> bindings;
+  std::string constants;
+  size_t constantBytes;
+  std::vector<uint32_t> unread = {};  // its *_UNREAD_BUFFERS: declared, never read (gpu/buffers.glsl)
+};
+std::map<std::string, Interface> interfaces() {
+#define INTERFACE(LIST, S) Interface{BINDINGS_OF(LIST), #S, sizeof(shared::S)}
+#define INTERFACE_WITH_UNREAD(LIST, S, UNREAD) Interface{BINDINGS_OF(LIST), #S, sizeof(shared::S), BINDINGS_OF(UNREAD)}
+  return {
+      {"generate", INTERFACE(GENERATE_BUFFERS, GenerateConstants)},
+      {"prepare", INTERFACE(PREPARE_BUFFERS, PrepareConstants)},
+      {"intersect", INTERFACE(INTERSECT_BUFFERS, IntersectConstants)},
+      {"shade", INTERFACE(SHADE_BUFFERS, VertexConstants)},
+      {"shade_float_atomics", INTERFACE(SHADE_BUFFERS, VertexConstants)},
+      {"shadow", INTERFACE_WITH_UNREAD(SHADOW_BUFFERS, VertexConstants, SHADOW_UNREAD_BUFFERS)},
+      {"shadow_float_atomics", INTERFACE_WITH_UNREAD(SHADOW_BUFFERS, VertexConstants, SHADOW_UNREAD_BUFFERS)},
+      {"accumulate", INTERFACE(ACCUMULATE_BUFFERS, AccumulateConstants)},
+      {"pixel_estimate", INTERFACE(PIXEL_ESTIMATE_BUFFERS, PixelEstimateConstants)},
+      {"solve", INTERFACE(SOLVE_BUFFERS, SolveParams)},
+      {"display", INTERFACE_WITH_UNREAD(DISPLAY_BUFFERS, DisplayConstants, DISPLAY_UNREAD_BUFFERS)},
+      {"trace_rays", INTERFACE(TRACE_RAYS_BUFFERS, TraceRaysConstants)},
+      {"cell_lookup", INTERFACE(CELL_LOOKUP_BUFFERS, CellLookupConstants)},
+  };
+#undef INTERFACE
+#undef INTERFACE_WITH_UNREAD
+}
+
+// Every module pushes its interface's struct, which is the whole range of its pipeline layout
+// (host/vulkan/compute_pass.h) and fits the 128 bytes every device holds.
+TEST(LayoutContract, PushConstantBlocksAreTheInterfacesStruct) {
+  const std::map<std::string, Interface> declared = interfaces();
   size_t modulesWithPushConstants = 0;
   for (const std::string& module : embeddedShaderNames()) {
+    const auto interface = declared.find(module);
+    ASSERT_NE(interface, declared.end()) << module << ": a module without an interface in this test";
     const testing::SpirvLayout spirv = readModule(module);
     const std::vector<uint32_t> blocks = spirv.pushConstantBlocks();
     ASSERT_LE(blocks.size(), 1u) << module;
     if (blocks.empty()) continue;
     ++modulesWithPushConstants;
     const uint32_t bytes = spirv.byteSize(blocks[0]);
-    EXPECT_LE(bytes, sizeof(shared::PassConstants)) << module << ": push constants beyond the pipeline layout's range";
+    EXPECT_EQ(bytes, interface->second.constantBytes) << module << ": push constants other than the host's range";
     EXPECT_LE(bytes, 128u) << module << ": push constants beyond maxPushConstantsSize's guaranteed minimum";
     for (const testing::SpirvLayout::Struct& s : spirv.structs())
       if (s.id == blocks[0]) {
         ASSERT_EQ(s.members.size(), 1u) << module;
         for (const testing::SpirvLayout::Struct& inner : spirv.structs())
-          if (inner.id == s.members[0].type)
-            EXPECT_TRUE(pushed.count(inner.name)) << module << ": pushes " << inner.name;
+          if (inner.id == s.members[0].type) EXPECT_EQ(inner.name, interface->second.constants) << module;
       }
   }
-  EXPECT_GE(modulesWithPushConstants, 3u);  // at least the wavefront passes, the solve, the display
+  EXPECT_EQ(modulesWithPushConstants, declared.size());  // every pass has constants
+}
+
+// The buffers a compiled module reads or writes are exactly those its interface lists: the host
+// binds that list (a buffer missing from it would be an invalid pipeline; one the pass does not
+// read would be bound for nothing). The optimized modules declare only what their code uses; the
+// float-atomic variants are left unoptimized by glslang (its optimizer does not take their
+// capability) and also keep the declarations of the interface's unread rows, which no
+// instruction reaches. Each pass binds at most the 32 storage buffers lavapipe offers one stage.
+TEST(LayoutContract, EveryPassBindsWhatItReads) {
+  const std::map<std::string, Interface> declared = interfaces();
+  for (const std::string& module : embeddedShaderNames()) {
+    const auto interface = declared.find(module);
+    ASSERT_NE(interface, declared.end()) << module;
+    std::vector<uint32_t> listed = interface->second.bindings;
+    std::sort(listed.begin(), listed.end());
+    EXPECT_EQ(std::adjacent_find(listed.begin(), listed.end()), listed.end()) << module << ": a row listed twice";
+    EXPECT_LE(listed.size(), 32u) << module;
+    const std::vector<uint32_t> inModule = readModule(module).bindings();
+    const bool unoptimized = module.find("_float_atomics") != std::string::npos;
+    if (!unoptimized) {
+      EXPECT_EQ(inModule, listed) << module << ": bindings (SPIR-V, interface)";
+      continue;
+    }
+    std::vector<uint32_t> listedOrUnread = listed;
+    listedOrUnread.insert(listedOrUnread.end(), interface->second.unread.begin(), interface->second.unread.end());
+    std::sort(listedOrUnread.begin(), listedOrUnread.end());
+    EXPECT_TRUE(std::includes(inModule.begin(), inModule.end(), listed.begin(), listed.end())) << module;
+    EXPECT_TRUE(std::includes(listedOrUnread.begin(), listedOrUnread.end(), inModule.begin(), inModule.end()))
+        << module << ": declares a buffer its interface does not list";
+  }
 }
 
 }  // namespace

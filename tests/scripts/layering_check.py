@@ -33,12 +33,19 @@ LAYERS = {
     "app":     ["util", "vulkan", "scene", "gltf", "output", "compare", "cms", "render", "cpu", "session", "viewer"],
 }
 BELOW_ALL = {"shared"}
+# The shaders' interface headers (shaders/<folder>/*_interface.h: a pass's buffers and push
+# constants, which the host binds and pushes) lie below every layer too, like shared/.
+SHADERS_DIR = pathlib.Path(__file__).resolve().parents[2] / "shaders"
+
+
+def shader_interface(header):
+    return header.endswith("_interface.h") and (SHADERS_DIR / header).is_file()
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 
 
 def allowed(layer, header):
     folder = header.split("/", 1)[0]
-    if "/" not in header or folder == layer or folder in BELOW_ALL:
+    if "/" not in header or folder == layer or folder in BELOW_ALL or shader_interface(header):
         return True  # a same-folder or generated header (e.g. "intersect.spv.h")
     rules = LAYERS[layer]
     return folder in rules or header in rules

@@ -109,6 +109,14 @@ class SpirvLayout {
   // The struct types of the module's push-constant variables (a `uniform Push { T pc; }` block).
   std::vector<uint32_t> pushConstantBlocks() const { return pushConstantBlocks_; }
 
+  // The Binding decoration of every variable the module declares (glslang keeps only the
+  // buffers the code reads or writes), sorted.
+  std::vector<uint32_t> bindings() const {
+    std::set<uint32_t> sorted;
+    for (const auto& [id, binding] : bindings_) sorted.insert(binding);
+    return {sorted.begin(), sorted.end()};
+  }
+
  private:
   static constexpr uint32_t kMagic = 0x07230203u;
   enum Op : uint32_t {
@@ -116,7 +124,8 @@ class SpirvLayout {
     OpTypeRuntimeArray = 29, OpTypeStruct = 30, OpTypePointer = 32, OpConstant = 43, OpVariable = 59,
     OpDecorate = 71, OpMemberDecorate = 72,
   };
-  static constexpr uint32_t kDecorationBlock = 2, kDecorationArrayStride = 6, kDecorationOffset = 35;
+  static constexpr uint32_t kDecorationBlock = 2, kDecorationArrayStride = 6, kDecorationOffset = 35,
+                            kDecorationBinding = 33;
   static constexpr uint32_t kStorageClassPushConstant = 9;
 
   struct Vector { uint32_t component, count; };
@@ -162,6 +171,7 @@ class SpirvLayout {
       case OpDecorate:
         if (count >= 4 && w[2] == kDecorationArrayStride) arrayStrides_[w[1]] = w[3];
         if (count >= 3 && w[2] == kDecorationBlock) blocks_.insert(w[1]);
+        if (count >= 4 && w[2] == kDecorationBinding) bindings_[w[1]] = w[3];
         break;
       case OpMemberDecorate:
         if (count >= 5 && w[3] == kDecorationOffset) memberOffsets_[{w[1], w[2]}] = w[4];
@@ -182,6 +192,7 @@ class SpirvLayout {
   std::map<uint32_t, uint32_t> constants_;
   std::vector<uint32_t> pushConstantBlocks_;
   std::set<uint32_t> blocks_;
+  std::map<uint32_t, uint32_t> bindings_;  // variable -> binding
 };
 
 }  // namespace mixtrace::testing

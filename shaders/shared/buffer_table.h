@@ -1,0 +1,32 @@
+// The row format of the buffer tables (scene_buffers.h, method_buffers.h, path_state.h, cms_state.h, and the rows
+// of single passes such as the viewer's display): every storage buffer a pass can bind is one row
+//   BUFFER_<ID>(X) -> X(ID, name, binding, access, Type, extent, label)
+// and a pass's interface header lists the rows it reads (shaders/wavefront/*_interface.h). From
+// a row come, through the X the user passes:
+//   - the binding number, as the constant BINDING_<ID> (below, in C++ and GLSL alike);
+//   - the GLSL declaration `Type name[]` (or `Type name` for ONE) at that binding
+//     (shaders/gpu/buffers.glsl), so the pass bodies use `name`;
+//   - the host's allocation (extent x sizeof(Type) bytes, labelled `label` in error messages) and
+//     its binding (host/render/device_buffers.*).
+// Binding numbers are one space for all tables: a buffer has one number in every pass that binds
+// it (host/vulkan/layout_checks.cpp asserts that no two rows share one). Taken: 0-8 (scene),
+// 9-19 (path state, queues, film), 20-29 (CMS), 30 (the viewer's window), 31 (the method's light
+// selection). Each pass's descriptor set
+// holds only the rows its interface lists, so the per-stage limit on storage buffers (32 on
+// lavapipe) applies to one pass, not to the sum of all.
+//
+// access: READ_ONLY (declared readonly), READ_WRITE, READ_BACK (read-write, and read by the host
+// after a submission: allocated where the host reads it cheaply).
+// extent (elements): ONE (a single struct), PER_PATH, TWO_PER_PATH (ping-pong halves), PER_PIXEL,
+// TWO_PER_PIXEL, CELL_SLOTS / CELL_STATS / CELL_SOLUTIONS (the CMS cell table, x the per-cell
+// strides of shared/cms_layouts.h), CMS_PATHS / CMS_PIXELS (per path / pixel when the method
+// learns, else one: a placeholder), UPLOADED (the host uploads its contents; the size is theirs),
+// WINDOW_PIXELS (the viewer's window).
+#ifndef MIXTRACE_SHARED_BUFFER_TABLE_H
+#define MIXTRACE_SHARED_BUFFER_TABLE_H
+#include "shared/dialect.h"
+
+// X for a table: declares the row's binding number as BINDING_<ID>.
+#define BUFFER_BINDING_CONSTANT(ID, name, binding, access, Type, extent, label) const uint BINDING_##ID = uint(binding);
+
+#endif

@@ -1,0 +1,19 @@
+// The method's buffers, uploaded once per renderer beside the prepared scene's: what a method adds
+// to the same scene (host/cms/method_lights.h). Rows in the format of shared/buffer_table.h. The
+// scene is prepared once for every method, so the method's light selection is not in LightGpu.
+#ifndef MIXTRACE_SHARED_METHOD_BUFFERS_H
+#define MIXTRACE_SHARED_METHOD_BUFFERS_H
+#include "shared/buffer_table.h"
+#include "shared/layouts.h"
+
+// LightSelectionGpu per light: the selection pmf and CDF (uniform or by power), and for the
+// learning methods the light's cluster and its pmf inside it.
+#define BUFFER_LIGHT_SELECTION(X) \
+  X(LIGHT_SELECTION, lightSelection, 31, READ_ONLY, LightSelectionGpu, UPLOADED, "light selection")
+
+#define METHOD_BUFFERS(X) BUFFER_LIGHT_SELECTION(X)
+
+SHARED_BEGIN
+METHOD_BUFFERS(BUFFER_BINDING_CONSTANT)
+SHARED_END
+#endif

@@ -1,0 +1,35 @@
+// The wavefront's path state (a structure of arrays, one entry per path of a chunk), its queues
+// and the film: every buffer the renderer allocates for the plain path tracer, declared once.
+// Rows in the format of shared/buffer_table.h; the renderer allocates and binds them in one loop
+// (host/render/device_buffers.cpp).
+#ifndef MIXTRACE_SHARED_PATH_STATE_H
+#define MIXTRACE_SHARED_PATH_STATE_H
+#include "shared/buffer_table.h"
+#include "shared/layouts.h"
+
+#define BUFFER_RAY_ORIGIN(X) X(RAY_ORIGIN, rayOrigin, 9, READ_WRITE, vec3, PER_PATH, "path state (ray origins)")
+#define BUFFER_RAY_DIRECTION(X) \
+  X(RAY_DIRECTION, rayDirection, 10, READ_WRITE, vec3, PER_PATH, "path state (ray directions)")
+#define BUFFER_THROUGHPUT(X) X(THROUGHPUT, throughput, 11, READ_WRITE, vec3, PER_PATH, "path state (throughput)")
+#define BUFFER_RADIANCE(X) X(RADIANCE, radiance, 12, READ_WRITE, vec3, PER_PATH, "path state (radiance)")
+#define BUFFER_RNG(X) X(RNG, rngState, 13, READ_WRITE, uint, PER_PATH, "path state (random numbers)")
+#define BUFFER_MIS_PDF(X) X(MIS_PDF, misPdf, 14, READ_WRITE, float, PER_PATH, "path state (MIS pdfs)")
+#define BUFFER_HITS(X) X(HITS, hits, 15, READ_WRITE, HitRecord, PER_PATH, "path state (hits)")
+// Queues: the extension rays' path indices in ping-pong halves of pathCount entries each, the
+// shadow rays, and the counters with the indirect dispatch arguments.
+#define BUFFER_RAY_QUEUE(X) X(RAY_QUEUE, rayQueue, 16, READ_WRITE, uint, TWO_PER_PATH, "ray queues")
+#define BUFFER_SHADOW_QUEUE(X) X(SHADOW_QUEUE, shadowQueue, 17, READ_WRITE, ShadowRay, PER_PATH, "shadow-ray queue")
+#define BUFFER_QUEUE_STATE(X) X(QUEUE_STATE, queues, 18, READ_BACK, QueueState, ONE, "queue counters")
+// Per pixel: [2 * pixel] the running mean, [2 * pixel + 1] sqrt of the sum of squared deviations
+// (shared/film.h).
+#define BUFFER_FILM(X) X(FILM, film, 19, READ_BACK, vec3, TWO_PER_PIXEL, "film")
+
+#define PATH_STATE_BUFFERS(X)                                                                             \
+  BUFFER_RAY_ORIGIN(X) BUFFER_RAY_DIRECTION(X) BUFFER_THROUGHPUT(X) BUFFER_RADIANCE(X) BUFFER_RNG(X)     \
+  BUFFER_MIS_PDF(X) BUFFER_HITS(X) BUFFER_RAY_QUEUE(X) BUFFER_SHADOW_QUEUE(X) BUFFER_QUEUE_STATE(X) \
+  BUFFER_FILM(X)
+
+SHARED_BEGIN
+PATH_STATE_BUFFERS(BUFFER_BINDING_CONSTANT)
+SHARED_END
+#endif

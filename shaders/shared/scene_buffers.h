@@ -1,0 +1,27 @@
+// The prepared scene's buffers, uploaded once (host/render/gpu_scene.cpp). Rows in the format of
+// shared/buffer_table.h.
+#ifndef MIXTRACE_SHARED_SCENE_BUFFERS_H
+#define MIXTRACE_SHARED_SCENE_BUFFERS_H
+#include "shared/buffer_table.h"
+#include "shared/layouts.h"
+
+#define BUFFER_CAMERA(X) X(CAMERA, camera, 0, READ_ONLY, CameraGpu, ONE, "camera")
+#define BUFFER_BVH_NODES(X) X(BVH_NODES, bvhNodes, 1, READ_ONLY, BvhNode, UPLOADED, "BVH nodes")
+#define BUFFER_TRIANGLES(X) X(TRIANGLES, triangles, 2, READ_ONLY, TriangleGeom, UPLOADED, "triangles")
+#define BUFFER_TRIANGLE_SHADING(X) \
+  X(TRIANGLE_SHADING, triangleShading, 3, READ_ONLY, TriangleShading, UPLOADED, "triangle shading data")
+#define BUFFER_MATERIALS(X) X(MATERIALS, materials, 4, READ_ONLY, MaterialGpu, UPLOADED, "materials")
+#define BUFFER_TEXTURES(X) X(TEXTURES, textures, 5, READ_ONLY, TextureGpu, UPLOADED, "texture table")
+#define BUFFER_TEXELS(X) X(TEXELS, texels, 6, READ_ONLY, uint, UPLOADED, "texels")
+#define BUFFER_LIGHTS(X) X(LIGHTS, lights, 7, READ_ONLY, LightGpu, UPLOADED, "lights")
+#define BUFFER_EMITTERS(X) X(EMITTERS, emitters, 8, READ_ONLY, EmitterGpu, UPLOADED, "emitters")
+
+#define SCENE_BUFFERS(X)                                                                             \
+  BUFFER_CAMERA(X) BUFFER_BVH_NODES(X) BUFFER_TRIANGLES(X) BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) \
+  BUFFER_TEXTURES(X) BUFFER_TEXELS(X) BUFFER_LIGHTS(X) BUFFER_EMITTERS(X)
+// (binding 31: the method's light selection, shared/method_buffers.h.)
+
+SHARED_BEGIN
+SCENE_BUFFERS(BUFFER_BINDING_CONSTANT)
+SHARED_END
+#endif
