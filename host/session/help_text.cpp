@@ -109,7 +109,7 @@ struct Section {
   std::string heading, before, after;
 };
 
-// What view does and its keys. Kept unbroken (tests/unit/methods_test.cpp looks for them):
+// What view does and its keys. Kept unbroken (tests/unit/cms/methods_test.cpp looks for them):
 // "Keys: 1-5" ending its line, and "shift+1-5 its right-hand method".
 std::string viewIntro() {
   const std::string keys = viewerKeyRange();   // the viewer's method keys

@@ -3,7 +3,7 @@
 // in GLSL (host/vulkan/gpu_layout_table.inc derives them), and every push-constant block fits the
 // range the pipeline layout declares and the range every Vulkan device guarantees. A layout
 // change that breaks one of them fails the build here, not as a wrong image.
-// tests/unit/layout_contract_test.cpp checks the other half: that the compiled shaders (the
+// tests/gpu/layout_contract_test.cpp checks the other half: that the compiled shaders (the
 // embedded SPIR-V) see the same offsets.
 #include <cstddef>
 #include <cstdint>

@@ -4,7 +4,7 @@
 // layout(scalar) (VK_EXT_scalar_block_layout, core in Vulkan 1.2), whose packing is exactly C's
 // for these types (vec3 is 12 bytes, 4-aligned), so C++ (GLM) and GLSL agree byte for byte. The
 // contract is checked twice: host/vulkan/layout_checks.cpp static_asserts every size and offset
-// against host/vulkan/gpu_layout_table.inc, and tests/unit/layout_contract_test.cpp compares them
+// against host/vulkan/gpu_layout_table.inc, and tests/gpu/layout_contract_test.cpp compares them
 // with the offsets the compiled shaders declare. A change to a struct here updates that table.
 #ifndef MIXTRACE_SHARED_LAYOUTS_H
 #define MIXTRACE_SHARED_LAYOUTS_H

@@ -1,6 +1,6 @@
 // Test kernel tests/cell_lookup.comp: every invocation finds or claims the cell of one (position,
 // normal, material) given by the host (rayOrigin = position, rayDirection = normal, rngState =
-// material) and writes the slot over the material in rngState[i] (tests/unit/cms_cells_test.cpp).
+// material) and writes the slot over the material in rngState[i] (tests/gpu/cms_cells_test.cpp).
 #ifndef MIXTRACE_TESTS_CELL_LOOKUP_INTERFACE_H
 #define MIXTRACE_TESTS_CELL_LOOKUP_INTERFACE_H
 #include "shared/cms_state.h"

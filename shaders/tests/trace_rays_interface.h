@@ -1,5 +1,5 @@
 // Test kernel tests/trace_rays.comp: the wavefront's BVH traversal on rays given by the host
-// (tests/unit/gpu_bvh_test.cpp). Mode 0: closest hit into hits[]; mode 1: any hit in
+// (tests/gpu/gpu_bvh_test.cpp). Mode 0: closest hit into hits[]; mode 1: any hit in
 // (0, misPdf[i]) into misPdf[i] (1 blocked, 0 free).
 #ifndef MIXTRACE_TESTS_TRACE_RAYS_INTERFACE_H
 #define MIXTRACE_TESTS_TRACE_RAYS_INTERFACE_H

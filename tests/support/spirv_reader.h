@@ -2,7 +2,7 @@
 // A small reader of the layout a SPIR-V module declares: its struct types with their names, member
 // names and explicit Offset decorations, the ArrayStride of arrays, and which struct is the
 // push-constant block. Enough to compare what glslang computed for a buffer's struct with what
-// C++ computes for the struct of the same name (tests/unit/layout_contract_test.cpp).
+// C++ computes for the struct of the same name (tests/gpu/layout_contract_test.cpp).
 // Only the word stream is read: header, then instructions of (word count << 16 | opcode).
 #include <algorithm>
 #include <cstddef>
