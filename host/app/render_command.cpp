@@ -15,7 +15,7 @@
 #include "output/render_stats.h"
 #include "cms/cms_setup.h"
 #include "cpu/cpu_renderer.h"
-#include "render/wavefront_renderer.h"
+#include "wavefront/wavefront_renderer.h"
 #include "scene/prepared_scene.h"
 #include "util/error.h"
 #include "util/log.h"

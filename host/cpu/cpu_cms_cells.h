@@ -2,7 +2,7 @@
 // The controlled-mixture-sampling state of the CPU reference (docs/estimator.md): the hashed cell
 // table, each cell's statistics in double precision, its sample count and its solution, the light
 // clusters, and the pixel estimate the relative weights divide by. It follows the Vulkan renderer
-// (render/wavefront_renderer.cpp, shaders/wavefront/shade.comp, shadow.comp) rule for rule; only
+// (wavefront/wavefront_renderer.cpp, shaders/wavefront/shade.comp, shadow.comp) rule for rule; only
 // the statistics and the solve (cms/reference_solve.h) are double precision.
 //
 // Threading: many workers trace paths at once. They claim cells with a 64-bit compare-and-swap
@@ -21,7 +21,7 @@
 
 #include "cms/cell_grid.h"
 #include "cms/cms_setup.h"
-#include "render/renderer.h"
+#include "backend/renderer.h"
 #include "shared/cluster_layout.h"
 #include "shared/cms_layouts.h"
 #include "shared/layouts.h"

@@ -11,7 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "cpu/cpu_cms_cells.h"
-#include "render/renderer.h"
+#include "backend/renderer.h"
 
 namespace mixtrace {
 

@@ -16,7 +16,7 @@
 
 #include "cms/method_lights.h"
 #include "cpu/cpu_cms_cells.h"
-#include "render/renderer.h"
+#include "backend/renderer.h"
 #include "scene/prepared_scene.h"
 
 namespace mixtrace {

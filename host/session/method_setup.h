@@ -7,7 +7,7 @@
 
 #include "session/options.h"
 #include "cms/method_lights.h"
-#include "render/renderer.h"
+#include "backend/renderer.h"
 #include "scene/prepared_scene.h"
 
 namespace mixtrace {

@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "cms/methods.h"
-#include "render/renderer.h"
+#include "backend/renderer.h"
 #include "session/options.h"
 
 namespace mixtrace {
@@ -166,7 +166,7 @@ std::vector<OptionRow> cameraRows() {
 }
 
 // What is rendered and how. The options that are settings of the renderer take its defaults
-// (render/renderer.h), so that a renderer built without the command line (the tests build many)
+// (backend/renderer.h), so that a renderer built without the command line (the tests build many)
 // renders what `render` does.
 std::vector<OptionRow> samplingRows() {
   using G = OptionGroup;

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "render/renderer.h"
+#include "backend/renderer.h"
 
 namespace mixtrace {
 

@@ -5,7 +5,7 @@
 // viewer's window buffer; the renderer knows nothing of it.
 #include <vulkan/vulkan.h>
 
-#include "render/wavefront_renderer.h"
+#include "wavefront/wavefront_renderer.h"
 #include "viewer/display_interface.h"
 #include "vulkan/compute_pass.h"
 

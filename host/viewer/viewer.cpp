@@ -17,7 +17,7 @@
 #include "session/scene_camera.h"
 #include "output/png_preview.h"
 #include "output/render_output.h"
-#include "render/wavefront_renderer.h"
+#include "wavefront/wavefront_renderer.h"
 #include "scene/prepared_scene.h"
 #include "shared/display.h"
 #include "util/error.h"

@@ -7,7 +7,7 @@
 //   - the GLSL declaration `Type name[]` (or `Type name` for ONE) at that binding
 //     (shaders/gpu/buffers.glsl), so the pass bodies use `name`;
 //   - the host's allocation (extent x sizeof(Type) bytes, labelled `label` in error messages) and
-//     its binding (host/render/device_buffers.*).
+//     its binding (host/wavefront/device_buffers.*).
 // Binding numbers are one space for all tables: a buffer has one number in every pass that binds
 // it (host/vulkan/layout_checks.cpp asserts that no two rows share one). Taken: 0-8 (scene),
 // 9-19 (path state, queues, film), 20-29 (CMS), 30 (the viewer's window), 31 (the method's light

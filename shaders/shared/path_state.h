@@ -1,7 +1,7 @@
 // The wavefront's path state (a structure of arrays, one entry per path of a chunk), its queues
 // and the film: every buffer the renderer allocates for the plain path tracer, declared once.
 // Rows in the format of shared/buffer_table.h; the renderer allocates and binds them in one loop
-// (host/render/device_buffers.cpp).
+// (host/wavefront/device_buffers.cpp).
 #ifndef MIXTRACE_SHARED_PATH_STATE_H
 #define MIXTRACE_SHARED_PATH_STATE_H
 #include "shared/buffer_table.h"

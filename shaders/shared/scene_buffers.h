@@ -1,4 +1,4 @@
-// The prepared scene's buffers, uploaded once (host/render/gpu_scene.cpp). Rows in the format of
+// The prepared scene's buffers, uploaded once (host/wavefront/gpu_scene.cpp). Rows in the format of
 // shared/buffer_table.h.
 #ifndef MIXTRACE_SHARED_SCENE_BUFFERS_H
 #define MIXTRACE_SHARED_SCENE_BUFFERS_H

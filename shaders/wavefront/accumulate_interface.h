@@ -1,5 +1,5 @@
 // The accumulate pass (wavefront/accumulate.comp): folds each path's radiance into its pixel.
-// Declared once for the shader and the host (host/render/passes/accumulate_pass.cpp).
+// Declared once for the shader and the host (host/wavefront/passes/accumulate_pass.cpp).
 #ifndef MIXTRACE_WAVEFRONT_ACCUMULATE_INTERFACE_H
 #define MIXTRACE_WAVEFRONT_ACCUMULATE_INTERFACE_H
 #include "shared/path_state.h"

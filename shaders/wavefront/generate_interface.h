@@ -1,6 +1,6 @@
 // The generate pass (wavefront/generate.comp): one camera ray per path of the chunk; resets the
 // path state and fills the first ray queue. What it binds and what it is pushed, declared once for
-// the shader and the host (host/render/passes/generate_pass.cpp).
+// the shader and the host (host/wavefront/passes/generate_pass.cpp).
 #ifndef MIXTRACE_WAVEFRONT_GENERATE_INTERFACE_H
 #define MIXTRACE_WAVEFRONT_GENERATE_INTERFACE_H
 #include "shared/path_state.h"

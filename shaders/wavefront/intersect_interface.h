@@ -1,5 +1,5 @@
 // The intersect pass (wavefront/intersect.comp): the closest hit of every queued extension ray.
-// Declared once for the shader and the host (host/render/passes/intersect_pass.cpp).
+// Declared once for the shader and the host (host/wavefront/passes/intersect_pass.cpp).
 #ifndef MIXTRACE_WAVEFRONT_INTERSECT_INTERFACE_H
 #define MIXTRACE_WAVEFRONT_INTERSECT_INTERFACE_H
 #include "shared/path_state.h"

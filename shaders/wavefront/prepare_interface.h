@@ -1,6 +1,6 @@
 // The prepare pass (wavefront/prepare.comp): a single invocation between passes that turns a
 // queue's counter into indirect dispatch arguments and resets the counters the next pass appends
-// to. Declared once for the shader and the host (host/render/passes/prepare_pass.cpp).
+// to. Declared once for the shader and the host (host/wavefront/passes/prepare_pass.cpp).
 #ifndef MIXTRACE_WAVEFRONT_PREPARE_INTERFACE_H
 #define MIXTRACE_WAVEFRONT_PREPARE_INTERFACE_H
 #include "shared/path_state.h"

@@ -1,7 +1,7 @@
 // The shade pass (wavefront/shade.comp): emission, one light sample (a shadow ray) and one BSDF
 // sample (the next extension ray) at every queued hit, and with controlled mixture sampling the
 // cell look-up, the cluster selection, the control variate and the statistics. Declared once for
-// the shader and the host (host/render/passes/shade_pass.cpp).
+// the shader and the host (host/wavefront/passes/shade_pass.cpp).
 //
 // VertexConstants is shared with the shadow pass (shadow_interface.h), which settles the light
 // samples shade queued: both add CMS statistics of one sample pass at one depth, through the same

@@ -1,7 +1,7 @@
 // The shadow pass (wavefront/shadow.comp): the any-hit test of every queued shadow ray, and with
 // controlled mixture sampling the light sample's terms that its visibility decides. Pushed the
 // shade pass's VertexConstants (shade_interface.h says why). Declared once for the shader and the
-// host (host/render/passes/shadow_pass.cpp).
+// host (host/wavefront/passes/shadow_pass.cpp).
 #ifndef MIXTRACE_WAVEFRONT_SHADOW_INTERFACE_H
 #define MIXTRACE_WAVEFRONT_SHADOW_INTERFACE_H
 #include "wavefront/shade_interface.h"

@@ -23,7 +23,7 @@
 #include "cms/gpu_solver.h"
 #include "cms/method_lights.h"
 #include "cms/reference_solve.h"
-#include "render/wavefront_renderer.h"
+#include "wavefront/wavefront_renderer.h"
 #include "gltf/gltf_loader.h"
 #include "scene/prepared_scene.h"
 #include "shared/bindings.h"

@@ -14,9 +14,6 @@ import re
 import sys
 
 # folder: the folders (or single headers, "folder/file.h") its files may include, lowest first.
-# One single header is allowed across a boundary until its own folder is split:
-#   cpu -> render/renderer.h: the backend interface (RenderSettings, Renderer) both backends
-#     implement, which lives beside the Vulkan one.
 LAYERS = {
     "util":    [],
     "vulkan":  ["util"],
@@ -26,11 +23,12 @@ LAYERS = {
     "output":  ["util"],
     "compare": ["util", "output"],
     "cms":     ["util", "vulkan", "scene"],
-    "render":  ["util", "vulkan", "scene", "output", "cms"],
-    "cpu":     ["util", "scene", "output", "cms", "render/renderer.h"],
-    "session": ["util", "scene", "gltf", "output", "compare", "cms", "render", "cpu"],
-    "viewer":  ["util", "vulkan", "scene", "output", "cms", "render", "session"],
-    "app":     ["util", "vulkan", "scene", "gltf", "output", "compare", "cms", "render", "cpu", "session", "viewer"],
+    "backend": ["util", "output", "cms"],
+    "wavefront": ["util", "vulkan", "scene", "output", "cms", "backend"],
+    "cpu":     ["util", "scene", "output", "cms", "backend"],
+    "session": ["util", "scene", "gltf", "output", "compare", "cms", "backend"],
+    "viewer":  ["util", "vulkan", "scene", "output", "cms", "backend", "wavefront", "session"],
+    "app":     ["util", "vulkan", "scene", "gltf", "output", "compare", "cms", "backend", "wavefront", "cpu", "session", "viewer"],
 }
 BELOW_ALL = {"shared"}
 # The shaders' interface headers (shaders/<folder>/*_interface.h: a pass's buffers and push

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "render/renderer.h"
+#include "backend/renderer.h"
 #include "session/option_table.h"
 #include "session/option_values.h"
 #include "util/error.h"

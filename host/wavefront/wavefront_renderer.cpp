@@ -1,4 +1,4 @@
-#include "render/wavefront_renderer.h"
+#include "wavefront/wavefront_renderer.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #pragma once
 // What the render command needs from a backend: the Vulkan wavefront renderer
-// (render/wavefront_renderer.h) and the CPU reference (cpu/cpu_renderer.h) implement it.
+// (wavefront/wavefront_renderer.h) and the CPU reference (cpu/cpu_renderer.h) implement it.
 #include <cstdint>
 #include <map>
 #include <string>

@@ -1,8 +1,8 @@
 #pragma once
 // The wavefront path tracer on Vulkan: records the passes (generate, [prepare, intersect, shade,
-// prepare, shadow] x depth, accumulate; host/render/passes/, one file each) as separate dispatches
+// prepare, shadow] x depth, accumulate; host/wavefront/passes/, one file each) as separate dispatches
 // over queues in device memory; the sizes of later dispatches come from the queues' counters via
-// vkCmdDispatchIndirect. The renderer owns the buffers (render/device_buffers.h, from the tables
+// vkCmdDispatchIndirect. The renderer owns the buffers (wavefront/device_buffers.h, from the tables
 // of shaders/shared/) and orchestrates: it calls the passes in order and submits.
 #include <cstdint>
 #include <map>
@@ -13,16 +13,16 @@
 #include "cms/gpu_solver.h"
 #include "cms/method_lights.h"
 #include "output/image.h"
-#include "render/device_buffers.h"
-#include "render/gpu_scene.h"
-#include "render/passes/accumulate_pass.h"
-#include "render/passes/generate_pass.h"
-#include "render/passes/intersect_pass.h"
-#include "render/passes/pixel_estimate_pass.h"
-#include "render/passes/prepare_pass.h"
-#include "render/passes/shade_pass.h"
-#include "render/passes/shadow_pass.h"
-#include "render/renderer.h"
+#include "wavefront/device_buffers.h"
+#include "wavefront/gpu_scene.h"
+#include "wavefront/passes/accumulate_pass.h"
+#include "wavefront/passes/generate_pass.h"
+#include "wavefront/passes/intersect_pass.h"
+#include "wavefront/passes/pixel_estimate_pass.h"
+#include "wavefront/passes/prepare_pass.h"
+#include "wavefront/passes/shade_pass.h"
+#include "wavefront/passes/shadow_pass.h"
+#include "backend/renderer.h"
 #include "scene/prepared_scene.h"
 #include "shared/bindings.h"
 #include "vulkan/buffer.h"

@@ -1,4 +1,4 @@
-#include "render/passes/intersect_pass.h"
+#include "wavefront/passes/intersect_pass.h"
 
 #include <cstddef>
 

@@ -1,4 +1,4 @@
-#include "render/passes/pixel_estimate_pass.h"
+#include "wavefront/passes/pixel_estimate_pass.h"
 
 #include <cstddef>
 

@@ -1,4 +1,4 @@
-#include "render/passes/generate_pass.h"
+#include "wavefront/passes/generate_pass.h"
 
 #include <cstddef>
 

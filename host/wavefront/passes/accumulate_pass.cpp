@@ -1,4 +1,4 @@
-#include "render/passes/accumulate_pass.h"
+#include "wavefront/passes/accumulate_pass.h"
 
 #include <cstddef>
 

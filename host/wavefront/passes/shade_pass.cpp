@@ -1,4 +1,4 @@
-#include "render/passes/shade_pass.h"
+#include "wavefront/passes/shade_pass.h"
 
 #include <cstddef>
 

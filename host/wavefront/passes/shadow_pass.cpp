@@ -1,4 +1,4 @@
-#include "render/passes/shadow_pass.h"
+#include "wavefront/passes/shadow_pass.h"
 
 #include <cstddef>
 

@@ -1,4 +1,4 @@
-#include "render/passes/prepare_pass.h"
+#include "wavefront/passes/prepare_pass.h"
 
 #include <cstddef>
 

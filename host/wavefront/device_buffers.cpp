@@ -1,4 +1,4 @@
-#include "render/device_buffers.h"
+#include "wavefront/device_buffers.h"
 
 #include "shared/cms_state.h"
 #include "shared/path_state.h"

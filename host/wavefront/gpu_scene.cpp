@@ -1,4 +1,4 @@
-#include "render/gpu_scene.h"
+#include "wavefront/gpu_scene.h"
 
 #include "shared/scene_buffers.h"
 
