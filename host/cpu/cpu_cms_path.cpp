@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "cpu/cpu_cms_access.h"
+#include "cpu/cpu_kernel_access.h"
 #include "shared/bsdf.h"
 #include "shared/ray_offset.h"
 #include "shared/rng.h"
@@ -23,13 +23,18 @@ struct PendingBsdfSample {
 
 }  // namespace
 
+// The terms are shared/cms_vertex_terms.h's, as in shade.comp and shadow.comp; only when each is
+// paid is written here (one loop instead of the GPU's shade and shadow passes).
 glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, const CmsPathContext& ctx,
                        RenderCounters& counters) {
   using namespace shared;
   CpuCmsCells& cells = *ctx.cells;
   const uint L = cells.clusterCount();
   const bool controlVariate = cells.controlVariate();
-  auto weightOf = [&](vec3 throughput) { return cells.sampleWeight(throughput, ctx.pixel); };
+  CellGrid grid{};
+  grid.origin = cells.grid().origin;
+  grid.invCellSize = cells.grid().invCellSize;
+  grid.tableSize = cells.grid().tableSize;
 
   vec3 radiance(0.0f), beta(1.0f);
   PendingBsdfSample pending;
@@ -41,28 +46,18 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
     SurfaceHit sh;
     if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
 
-    // The previous vertex's BSDF sample, now that its hit is known.
+    // The previous vertex's BSDF sample, now that its hit is known (shade.comp
+    // settlePreviousBsdfSample).
     float emissionWeight = 1.0f;
     if (pending.pdf > 0.0f) {
-      uint j = kNoCell;
-      float pj = 0.0f;
-      // A light point that emits nothing towards the vertex counts as no light point (shade.comp).
-      if (!isBlack(le)) {
-        j = LIGHT(lightOfTriangle(hit.triangle)).cluster;
-        pj = clusterPointPdf(hit.triangle, origin, sh.position);
-      }
-      float peff = (j != kNoCell ? clusterSelectPmf(pending.cell, L, j) * pj : 0.0f) + pending.pdf;
-      emissionWeight = pending.pdf / peff;
-      if (controlVariate && cellSolutionValid(pending.cell, L)) {
-        vec3 g = cellAlphaB(pending.cell, L) * pending.pdf;
-        if (j != kNoCell) g += cellAlpha(pending.cell, L, j) * pj;
-        radiance -= pending.throughput * g / peff;
-      }
-      if (pending.cell != kNoCell && cells.gathering(pending.cell)) {
-        double w = weightOf(pending.throughput);
-        cells.addSampleToA(pending.cell, j, pj, pending.pdf, peff, w);
-        if (j != kNoCell) cells.addSampleToB(pending.cell, j, le * pending.bsdfCos, pj, pending.pdf, peff, w);
-      }
+      float pj;
+      uint j = clusterOfBsdfHit(hit.triangle, le, origin, sh.position, pj);
+      float peff = bsdfSampleMixtureDensity(pending.cell, L, j, pj, pending.pdf);
+      emissionWeight = balanceWeight(pending.pdf, peff);
+      if (controlVariate && cellSolutionValid(pending.cell, L))
+        radiance -= controlVariateTerm(pending.throughput, pending.cell, L, j, pj, pending.pdf, peff);
+      addSampleStatistics(pending.cell, L, j, pj, pending.pdf, peff, le * pending.bsdfCos,
+                          cells.statisticsWeight(pending.cell, pending.throughput, ctx.pixel));
     }
     if (hit.triangle == kNoHit) break;   // no environment light: the path ends
     if (isBlack(beta)) break;            // continued only to settle the terms above
@@ -76,41 +71,40 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
     vec3 wo = toLocal(frame, -direction);
     vec3 next = offsetRayOrigin(sh.position, hitPointError(hit.triangle, hit.u, hit.v), sh.geometricNormal);
 
-    uint cell = cells.findCell(sh.position, sh.geometricNormal, sh.material);
+    // The vertex's cell (shade.comp enterCell).
+    uint cell = findOrInsertCell(grid, sh.position, sh.geometricNormal, sh.material);
+    if (cell == kNoCell) cells.countVertexWithoutCell();
     if (cell != kNoCell && cells.gathering(cell)) cells.countVertex(cell);
     const bool cv = controlVariate && cellSolutionValid(cell, L);
-    if (cv) radiance += beta * cellAlphaSum(cell, L);
+    if (cv) radiance += controlVariateIntegral(beta, cell, L);
 
-    // One light sample: a cluster from the cell's selection, a light in it, a point on that.
-    // Named draws: C++ leaves the order of constructor arguments unspecified.
+    // One light sample: a cluster from the cell's selection, a light in it, a point on that
+    // (shade.comp queueLightSample, then shadow.comp). Named draws: C++ leaves the order of
+    // constructor arguments unspecified.
     float uLight = rngNextFloat(rng);
     float uEmitter = rngNextFloat(rng);
     float uPointX = rngNextFloat(rng);
     float uPointY = rngNextFloat(rng);
     vec2 uPoint(uPointX, uPointY);
     if (ctx.lightCount > 0) {
-      uint k = selectCluster(cell, L, uLight);
-      uint light = selectLightInCluster(k, rngNextFloat(rng));
+      uint k;
+      float pk;
       LightSample ls;
-      bool carries = sampleLightPoint(sh.position, light, uEmitter, uPoint, ls);
-      float pk = LIGHT(light).clusterPmf * ls.pdf;
-      ls.pdf = clusterSelectPmf(cell, L, k) * pk;   // c_k p_k: the mixture density of this sample
+      bool carries = sampleClusterLight(cell, L, sh.position, uLight, uEmitter, uPoint, rng, k, pk, ls);
       const bool cmsTerms = cell != kNoCell;
       if (ls.pdf > 0.0f || cmsTerms) {
         vec3 wi = toLocal(frame, ls.direction);
         bool above = dot(ls.direction, sh.geometricNormal) > 0.0f;
         if (!(ls.pdf > 0.0f)) {
-          // A point with no solid-angle density from here (e.g. in this surface's plane) is a
-          // hidden point: p_B = 0, and the terms only need ratios, so any positive p_k does.
+          // No solid-angle density from here (e.g. in this surface's plane): a hidden point.
           above = false;
           carries = false;
-          pk = 1.0f;
-          ls.pdf = clusterSelectPmf(cell, L, k);
+          densitiesOfHiddenPoint(cell, L, k, pk, ls.pdf);
         }
         // Hidden without a trace (shade.comp): below the surface, or emitting nothing towards it.
         const bool reachable = above && carries;
         float pB = (ls.isDelta || !reachable) ? 0.0f : bsdfPdf(bsdf, wo, wi);
-        float peff = ls.pdf + pB;
+        float peff = lightSampleMixtureDensity(ls.pdf, pB);
         vec3 f(0.0f);
         if (reachable) f = bsdfEval(bsdf, wo, wi) * std::abs(wi.z) * ls.radiance;
         vec3 contribution = beta * f / peff;
@@ -127,20 +121,17 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
           // Whether the BSDF could have sampled this point depends on its visibility: a hidden
           // point has p_B = 0 and p_eff = c_k p_k.
           float pBSeen = visible ? pB : 0.0f;
-          float peffSeen = ls.pdf + pBSeen;
+          float peffSeen = lightSampleMixtureDensity(ls.pdf, pBSeen);
           if (cmsTerms && peffSeen > 0.0f) {
-            if (cv) radiance -= beta * (cellAlpha(cell, L, k) * pk + cellAlphaB(cell, L) * pBSeen) / peffSeen;
-            if (cells.gathering(cell)) {
-              double w = weightOf(beta);
-              cells.addSampleToA(cell, k, pk, pBSeen, peffSeen, w);
-              if (visible) cells.addSampleToB(cell, k, f, pk, pBSeen, peffSeen, w);
-            }
+            if (cv) radiance -= controlVariateTerm(beta, cell, L, k, pk, pBSeen, peffSeen);
+            addSampleStatistics(cell, L, k, pk, pBSeen, peffSeen, visible ? f : vec3(0.0f),
+                                cells.statisticsWeight(cell, beta, ctx.pixel));
           }
         }
       }
     }
 
-    // One BSDF sample: the next extension ray.
+    // One BSDF sample: the next extension ray (shade.comp sampleBsdf).
     float uDirectionX = rngNextFloat(rng);
     float uDirectionY = rngNextFloat(rng);
     vec2 uDirection(uDirectionX, uDirectionY);
@@ -151,10 +142,10 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
     vec3 wiWorld = toWorld(frame, wiLocal);
     if (!sampled || !(dot(wiWorld, sh.geometricNormal) > 0.0f)) {
       // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
-      // (docs/estimator.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
-      if (cv) radiance -= beta * cellAlphaB(cell, L);
-      if (cell != kNoCell && cells.gathering(cell))
-        cells.addSampleToA(cell, kNoCell, 0.0, 1.0, 1.0, weightOf(beta));
+      // (docs/estimator.md §1): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
+      if (cv) radiance -= controlVariateTerm(beta, cell, L, kNoCell, 0.0f, kFailedBsdfSamplePdf, kFailedBsdfSamplePdf);
+      addSampleStatistics(cell, L, kNoCell, 0.0, kFailedBsdfSamplePdf, kFailedBsdfSamplePdf, vec3(0.0f),
+                          cells.statisticsWeight(cell, beta, ctx.pixel));
       break;
     }
     // A path that can carry nothing more is still traced, so the next depth can settle this

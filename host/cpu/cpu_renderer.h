@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cpu/cpu_cms_cells.h"
+#include "cpu/cpu_kernel_context.h"
 #include "render/renderer.h"
 #include "scene/prepared_scene.h"
 
@@ -53,6 +54,7 @@ class CpuRenderer : public Renderer {
   std::vector<PixelStats> film_;
   RenderCounters counters_;
   std::unique_ptr<CpuCmsCells> cms_;   // null for the pt-* methods
+  CpuKernelContext kernel_;            // the scene and cms_, bound by each worker thread
 };
 
 }  // namespace mixtrace

@@ -1,25 +1,29 @@
 #pragma once
 // Lets C++ run the shared shader headers (lights.h, surface.h, bvh_traverse.h, ...) on a
 // PreparedScene: binds their buffer-access macros to the scene's arrays and turns every feature
-// switch on (the CPU needs no specialisation). Include this instead of those headers, and point
-// mixtrace::gSharedScene at the scene first. The headers have internal linkage, so a translation
+// switch on (the CPU needs no specialisation). Include this instead of those headers, after
+// defining SHARED_SCENE as an expression naming the scene (a `const PreparedScene&`): no process
+// global, so each includer decides where its scene comes from (the CPU reference: the calling
+// thread's context, cpu/cpu_kernel_access.h). The headers have internal linkage, so a translation
 // unit that binds the macros differently cannot collide with this one.
 #include "scene/prepared_scene.h"
 
-namespace mixtrace {
-// The scene the shared headers read in this process (set before calling into them).
-inline const PreparedScene* gSharedScene = nullptr;
-}  // namespace mixtrace
+#ifndef SHARED_SCENE
+#error "define SHARED_SCENE (the PreparedScene the shared headers read) before including scene/shared_scene_access.h"
+#endif
 
-#define BVH_NODE(i) (::mixtrace::gSharedScene->bvh.nodes[i])
-#define BVH_TRIANGLE(i) (::mixtrace::gSharedScene->bvh.triangles[i])
-#define TRIANGLE(i) (::mixtrace::gSharedScene->bvh.triangles[i])
-#define TRIANGLE_SHADING(i) (::mixtrace::gSharedScene->shading[i])
-#define MATERIAL(i) (::mixtrace::gSharedScene->scene.materials[i])
-#define TEXTURE(i) (::mixtrace::gSharedScene->textures[i])
-#define TEXEL(i) (::mixtrace::gSharedScene->texels[i])
-#define LIGHT(i) (::mixtrace::gSharedScene->lights.lights[i])
-#define EMITTER(i) (::mixtrace::gSharedScene->lights.emitters[i])
+#define BVH_NODE(i) (SHARED_SCENE.bvh.nodes[i])
+#define BVH_TRIANGLE(i) (SHARED_SCENE.bvh.triangles[i])
+#define TRIANGLE(i) (SHARED_SCENE.bvh.triangles[i])
+#define TRIANGLE_SHADING(i) (SHARED_SCENE.shading[i])
+#define MATERIAL(i) (SHARED_SCENE.scene.materials[i])
+#define TEXTURE(i) (SHARED_SCENE.textures[i])
+#define TEXEL(i) (SHARED_SCENE.texels[i])
+#define LIGHT(i) (SHARED_SCENE.lights.lights[i])
+// A light's cluster and its pmf inside the cluster (docs/estimator.md §2), read only through these.
+#define LIGHT_CLUSTER(light) (LIGHT(light).cluster)
+#define LIGHT_CLUSTER_PMF(light) (LIGHT(light).clusterPmf)
+#define EMITTER(i) (SHARED_SCENE.lights.emitters[i])
 #define HAS_TEXTURES true
 #define HAS_AREA_LIGHTS true
 #define HAS_PUNCTUAL_LIGHTS true

@@ -59,4 +59,7 @@ layout(scalar, binding = BINDING_CLUSTER_DEFAULTS) readonly buffer ClusterDefaul
 #define TEXTURE(i) textures[i]
 #define TEXEL(i) texels[i]
 #define LIGHT(i) lights[i]
+// A light's cluster and its pmf inside the cluster (docs/estimator.md §2), read only through these.
+#define LIGHT_CLUSTER(light) LIGHT(light).cluster
+#define LIGHT_CLUSTER_PMF(light) LIGHT(light).clusterPmf
 #define EMITTER(i) emitters[i]

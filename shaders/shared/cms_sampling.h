@@ -4,7 +4,8 @@
 // so the mixture density of a light sample is sum_k c_k p_k(z) = c_k p_k(z) (clusters are
 // disjoint).
 //
-// The includer defines, besides the accessors of lights.h: CLUSTER(i) -> ClusterGpu,
+// The includer defines, besides the accessors of lights.h: LIGHT_CLUSTER_PMF(light) -> float (the
+// light's pmf inside its cluster), CLUSTER(i) -> ClusterGpu,
 // CLUSTER_LIGHT(i) -> ClusterLightGpu, CELL_SOLUTION(i) -> float (the solve pass's output) and
 // CLUSTER_DEFAULT(k) -> float (the default selection pmf).
 #ifndef MIXTRACE_SHARED_CMS_SAMPLING_H
@@ -53,7 +54,7 @@ SHARED_FN uint selectLightInCluster(uint k, float u) {
 // sampling it once its cluster was chosen (0 where the triangle does not emit).
 SHARED_FN float clusterPointPdf(uint tri, vec3 from, vec3 lightPoint) {
   float pointPdf = areaLightPointPdf(tri, from, lightPoint);
-  return pointPdf > 0.0f ? LIGHT(lightOfTriangle(tri)).clusterPmf * pointPdf : 0.0f;
+  return pointPdf > 0.0f ? LIGHT_CLUSTER_PMF(lightOfTriangle(tri)) * pointPdf : 0.0f;
 }
 
 SHARED_FN bool cellSolutionValid(uint cell, uint L) {

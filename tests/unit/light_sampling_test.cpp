@@ -10,6 +10,12 @@
 #include <gtest/gtest.h>
 
 #include "scene/gltf_loader.h"
+#include "scene/prepared_scene.h"
+// The scene the shared headers read in this test (scene/shared_scene_access.h: its includer names it).
+namespace light_sampling_test {
+const mixtrace::PreparedScene* gScene = nullptr;
+}
+#define SHARED_SCENE (*::light_sampling_test::gScene)
 #include "scene/shared_scene_access.h"
 #include "support/chi2.h"
 #include "support/shipped_scenes.h"
@@ -23,7 +29,7 @@ class LightSamplingOnScene : public ::testing::TestWithParam<std::string> {};
 TEST_P(LightSamplingOnScene, ReturnedPdfEqualsEvaluatedPdf) {
   for (LightSelection selection : {LightSelection::Uniform, LightSelection::Power}) {
     PreparedScene scene = prepareScene(loadGltf(GetParam()), selection);
-    gSharedScene = &scene;
+    light_sampling_test::gScene = &scene;
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     const Bounds& b = scene.scene.bounds;
@@ -51,7 +57,7 @@ TEST_P(LightSamplingOnScene, ReturnedPdfEqualsEvaluatedPdf) {
 
 TEST_P(LightSamplingOnScene, SelectionFollowsPmf) {
   PreparedScene scene = prepareScene(loadGltf(GetParam()), LightSelection::Power);
-  gSharedScene = &scene;
+  light_sampling_test::gScene = &scene;
   const auto& lights = scene.lights.lights;
   double pmfSum = 0.0;
   for (auto& l : lights) pmfSum += l.selectPmf;
@@ -94,7 +100,7 @@ TEST(LightSampling, QuadIrradianceMatchesPolygonFormula) {
   ASSERT_LT(glm::normalize(glm::cross(q[1] - q[0], q[2] - q[0])).y, 0.0f) << "quad must face down";
   for (auto& t : s.triangles) for (auto& p : t.p) s.bounds.grow(p);
   PreparedScene scene = prepareScene(s, LightSelection::Power);
-  gSharedScene = &scene;
+  light_sampling_test::gScene = &scene;
 
   for (glm::vec3 p : {glm::vec3(0.0f), glm::vec3(0.7f, 0.2f, 0.1f), glm::vec3(-1.5f, 0.5f, 0.3f)}) {
     glm::vec3 n(0.0f, 1.0f, 0.0f);
