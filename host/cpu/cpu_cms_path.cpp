@@ -94,19 +94,10 @@ glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, con
       const bool cmsTerms = cell != kNoCell;
       if (ls.pdf > 0.0f || cmsTerms) {
         vec3 wi = toLocal(frame, ls.direction);
-        bool above = dot(ls.direction, sh.geometricNormal) > 0.0f;
-        if (!(ls.pdf > 0.0f)) {
-          // No solid-angle density from here (e.g. in this surface's plane): a hidden point.
-          above = false;
-          carries = false;
-          densitiesOfHiddenPoint(cell, L, k, pk, ls.pdf);
-        }
-        // Hidden without a trace (shade.comp): below the surface, or emitting nothing towards it.
-        const bool reachable = above && carries;
-        float pB = (ls.isDelta || !reachable) ? 0.0f : bsdfPdf(bsdf, wo, wi);
+        const bool reachable = lightPointReachable(cell, L, k, sh.geometricNormal, carries, pk, ls);
+        float pB;
+        vec3 f = lightSampleIntegrand(bsdf, wo, wi, ls, reachable, pB);
         float peff = lightSampleMixtureDensity(ls.pdf, pB);
-        vec3 f(0.0f);
-        if (reachable) f = bsdfEval(bsdf, wo, wi) * std::abs(wi.z) * ls.radiance;
         vec3 contribution = beta * f / peff;
         if (reachable && (!isBlack(contribution) || cmsTerms)) ++counters.shadowRays;
         if (!isBlack(contribution) || cmsTerms) {

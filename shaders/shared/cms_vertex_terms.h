@@ -20,6 +20,7 @@
 //                                     double compare-exchange loops).
 #ifndef MIXTRACE_SHARED_CMS_VERTEX_TERMS_H
 #define MIXTRACE_SHARED_CMS_VERTEX_TERMS_H
+#include "shared/bsdf.h"
 #include "shared/cms_layouts.h"
 #include "shared/cms_sampling.h"
 #include "shared/dialect.h"
@@ -45,12 +46,34 @@ SHARED_FN bool sampleClusterLight(uint cell, uint L, vec3 position, float uLight
   return carries;
 }
 
-// A light point with no solid-angle density from the vertex (in the vertex's plane, e.g. a light
-// sampling itself) is a hidden point: p_B = 0 there, and with p_k in the light's own area measure
-// the terms only need ratios, so any positive p_k does (§1): p_k = 1, light density c_k.
-SHARED_FN void densitiesOfHiddenPoint(uint cell, uint L, uint k, OUT(float) pk, OUT(float) lightPdf) {
-  pk = 1.0f;
-  lightPdf = clusterSelectPmf(cell, L, k);
+// Whether the BSDF at a vertex with geometric normal n could have sampled the light sample's
+// point, i.e. whether it is not hidden (§1). Hidden: below the surface, emitting nothing towards
+// the vertex (`carries` false: a one-sided emitter's back, a spot's outside) whatever lies between,
+// or without solid-angle density from the vertex (in its plane, e.g. a light sampling itself).
+// The BSDF sample treats such a hit as no light either (clusterOfBsdfHit), so each technique's
+// density stays the density of its own samples. A point without density takes, with clusters,
+// p_k = 1 and light density c_k: p_k is in the light's own area measure and the terms only need
+// ratios, so any positive p_k does. (Without clusters, a sample without density is not used.)
+SHARED_FN bool lightPointReachable(uint cell, uint L, uint k, vec3 n, bool carries, INOUT(float) pk,
+                                   INOUT(LightSample) ls) {
+  bool above = dot(ls.direction, n) > 0.0f;
+  if (!(ls.pdf > 0.0f)) {
+    above = false;
+    carries = false;
+    pk = 1.0f;
+    ls.pdf = clusterSelectPmf(cell, L, k);
+  }
+  return above && carries;
+}
+
+// The light sample's integrand f = bsdf |cos| Le (visibility aside) and BSDF density p_B at the
+// vertex (wo, wi in its shading frame); both 0 at a hidden point, p_B also for a delta light.
+SHARED_FN vec3 lightSampleIntegrand(BsdfParams bsdf, vec3 wo, vec3 wi, LightSample ls, bool reachable,
+                                    OUT(float) pB) {
+  pB = (ls.isDelta || !reachable) ? 0.0f : bsdfPdf(bsdf, wo, wi);
+  vec3 f = vec3(0.0f);
+  if (reachable) f = bsdfEval(bsdf, wo, wi) * abs(wi.z) * ls.radiance;
+  return f;
 }
 
 // The mixture density of a light sample: its light density (c_k p_k with clusters) plus p_B

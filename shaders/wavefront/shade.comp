@@ -87,7 +87,8 @@ void enterCell(INOUT(Vertex) v) {
 
 // One light sample (next event estimation), queued as a shadow ray with its contribution. Plain
 // MIS picks a light from the scene's selection; CMS a cluster from the cell's, and a hidden point
-// (§1) settles its terms at once, a reachable one with the shadow ray (p_B depends on visibility).
+// (§1, lightPointReachable) settles its terms at once, with no shadow ray; a reachable one with
+// the shadow ray, because whether the BSDF could have sampled it (p_B) depends on visibility.
 void queueLightSample(Vertex v, INOUT(uint) rng) {
   float uLight = rngNextFloat(rng);
   float uEmitter = rngNextFloat(rng);
@@ -106,23 +107,10 @@ void queueLightSample(Vertex v, INOUT(uint) rng) {
   bool cmsTerms = CMS_SELECTION && v.cell != kNoCell;
   if (!(ls.pdf > 0.0 || cmsTerms)) return;
   vec3 wi = toLocal(v.frame, ls.direction);
-  bool above = dot(ls.direction, v.sh.geometricNormal) > 0.0;
-  if (!(ls.pdf > 0.0)) {
-    // No solid-angle density from here (in this surface's plane): a hidden point (§1).
-    above = false;
-    carries = false;
-    densitiesOfHiddenPoint(v.cell, L, k, pk, ls.pdf);
-  }
-  // A point below the surface is hidden by the surface itself. A point that emits nothing
-  // towards this vertex (a one-sided emitter's back, a spot's outside) is, for controlled
-  // mixture sampling, a hidden point too, whatever lies between: the BSDF sample treats such
-  // a hit as no light either (settlePreviousBsdfSample), so each technique's density stays the
-  // density of its own samples and every term stays unbiased, and no shadow ray is needed.
-  bool reachable = above && carries;
-  float pB = (ls.isDelta || !reachable) ? 0.0 : bsdfPdf(v.bsdf, v.wo, wi);
+  bool reachable = lightPointReachable(v.cell, L, k, v.sh.geometricNormal, carries, pk, ls);
+  float pB;
+  vec3 f = lightSampleIntegrand(v.bsdf, v.wo, wi, ls, reachable, pB);
   float peff = lightSampleMixtureDensity(ls.pdf, pB);
-  vec3 f = vec3(0.0);
-  if (reachable) f = bsdfEval(v.bsdf, v.wo, wi) * abs(wi.z) * ls.radiance;
   vec3 contribution = v.beta * f / peff;
   float ck = ls.pdf / max(pk, 1e-38);   // the cell's c_k (ls.pdf = c_k p_k)
   if (cmsTerms && !reachable) {
