@@ -1,22 +1,9 @@
 #include "cpu/cpu_cms_cells.h"
 
 #include "cms/reference_solve.h"
+#include "cpu/cpu_kernel_access.h"
 #include "shared/cms_layouts.h"
 
-namespace mixtrace {
-namespace {
-// The table and the film the shared headers below read, set by the member that calls into them
-// (thread_local: every worker looks cells up at once, possibly in different renderers).
-thread_local CpuCmsCells* tLookupTable = nullptr;
-thread_local const glm::vec3* tFilmMean = nullptr;
-}  // namespace
-}  // namespace mixtrace
-
-#define CELL_KEY_LOAD(slot) (::mixtrace::tLookupTable->keyLoad(slot))
-#define CELL_KEY_CAS(slot, expected, desired) (::mixtrace::tLookupTable->keyCompareSwap(slot, expected, desired))
-#include "shared/cms_cells.h"
-#define FILM_MEAN(i) (::mixtrace::tFilmMean[i])
-#include "shared/pixel_estimate.h"
 
 namespace mixtrace {
 
@@ -46,44 +33,16 @@ CpuCmsCells::CpuCmsCells(const CmsScene& cms, const Bounds& sceneBounds, const R
   for (uint32_t cell = 0; cell < grid_.tableSize; ++cell) solveCell(cell);
 }
 
-uint32_t CpuCmsCells::findCell(glm::vec3 position, glm::vec3 geometricNormal, uint32_t material) {
-  shared::CellGrid grid{};
-  grid.origin = grid_.origin;
-  grid.invCellSize = grid_.invCellSize;
-  grid.tableSize = grid_.tableSize;
-  tLookupTable = this;
-  uint32_t cell = shared::findOrInsertCell(grid, position, geometricNormal, material);
-  if (cell == shared::kNoCell) verticesWithoutCell_.fetch_add(1, std::memory_order_relaxed);
-  return cell;
-}
-
-double CpuCmsCells::sampleWeight(glm::vec3 throughput, uint32_t pixel) const {
-  if (!passGathers_) return 0.0;
+double CpuCmsCells::statisticsWeight(uint32_t cell, glm::vec3 throughput, uint32_t pixel) const {
+  if (cell == shared::kNoCell || !gathering(cell)) return 0.0;
   return relativeWeighting_ ? double(shared::relativeSampleWeight(throughput, pixelEstimate_[pixel])) : 1.0;
 }
 
-void CpuCmsCells::add(uint32_t cell, uint32_t index, double value) {
+void CpuCmsCells::addStatistic(uint32_t cell, uint32_t index, double value) {
   if (value == 0.0) return;
   std::atomic<double>& slot = stats_[size_t(cell) * shared::cellStatsStride(L_) + index];
   double seen = slot.load(std::memory_order_relaxed);
   while (!slot.compare_exchange_weak(seen, seen + value, std::memory_order_relaxed)) {
-  }
-}
-
-void CpuCmsCells::addSampleToA(uint32_t cell, uint32_t k, double pk, double pB, double peff, double w) {
-  const double inv = w / (peff * peff);
-  if (k != shared::kNoCell) {
-    add(cell, shared::statsAkk(L_, k), pk * pk * inv);
-    add(cell, shared::statsAkB(L_, k), pk * pB * inv);
-  }
-  add(cell, shared::statsABB(L_), pB * pB * inv);
-}
-
-void CpuCmsCells::addSampleToB(uint32_t cell, uint32_t k, glm::vec3 f, double pk, double pB, double peff, double w) {
-  const double scaleK = w * pk / (peff * peff), scaleB = w * pB / (peff * peff);
-  for (uint32_t c = 0; c < 3; ++c) {
-    if (k != shared::kNoCell) add(cell, shared::statsBk(L_, k, c), double(f[c]) * scaleK);
-    add(cell, shared::statsBB(L_, c), double(f[c]) * scaleB);
   }
 }
 
@@ -118,11 +77,13 @@ void CpuCmsCells::solveAll() {
 }
 
 void CpuCmsCells::refreshPixelEstimate(const std::vector<glm::vec3>& filmMean, uint32_t width, uint32_t height) {
-  tFilmMean = filmMean.data();
+  // shared/pixel_estimate.h reads the means through FILM_MEAN, bound to this thread's context.
+  CpuKernelContext context;
+  context.filmMean = filmMean.data();
+  CpuKernelBinding bind(context);
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x)
       pixelEstimate_[size_t(y) * width + x] = shared::pixelEstimateAt(int(x), int(y), int(width), int(height));
-  tFilmMean = nullptr;
 }
 
 uint64_t CpuCmsCells::cellsUsed() const {

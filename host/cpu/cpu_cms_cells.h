@@ -11,7 +11,8 @@
 // the additions). The solution, the defaults and the pixel estimate are only read while tracing;
 // solveAll() and refreshPixelEstimate() run between sample passes, with no worker active.
 //
-// The shared headers reach this state through the macros of cpu/cpu_cms_access.h.
+// The shared headers reach this state through the macros of cpu/cpu_kernel_access.h, which also
+// forms the statistics' terms (shared/cms_vertex_terms.h).
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -38,9 +39,9 @@ class CpuCmsCells {
   const CellGridSetup& grid() const { return grid_; }
   bool controlVariate() const { return controlVariate_; }
 
-  // The cell of a vertex (found or claimed), or shared::kNoCell when its probe sequence is full
-  // (counted: such a vertex uses no control variate and adds no statistics).
-  uint32_t findCell(glm::vec3 position, glm::vec3 geometricNormal, uint32_t material);
+  // Counts a vertex whose probe sequence in the cell table was full (shared/cms_cells.h
+  // findOrInsertCell, on grid()): it uses no control variate and adds no statistics.
+  void countVertexWithoutCell() { verticesWithoutCell_.fetch_add(1, std::memory_order_relaxed); }
 
   // Whether the vertices of the current sample pass add to the statistics (set per pass from the
   // training schedule, cms/training_schedule.h).
@@ -49,17 +50,10 @@ class CpuCmsCells {
   bool gathering(uint32_t cell) const {
     return passGathers_ && cellSamples_[cell].load(std::memory_order_relaxed) < shared::kCellSampleCap;
   }
-  // The weight of a sample of a vertex with path throughput `throughput` in `pixel`
-  // (docs/estimator.md §5): shared/cms_layouts.h relativeSampleWeight, 1 without relative
-  // weighting, 0 while not gathering.
-  double sampleWeight(glm::vec3 throughput, uint32_t pixel) const;
-
-  // The statistics of one sample (docs/estimator.md §4), k = shared::kNoCell for a sample in no
-  // cluster's support: A_kk += w pk^2 / peff^2, A_kB += w pk pB / peff^2, A_BB += w pB^2 / peff^2
-  // and b_k += w f pk / peff^2, b_B += w f pB / peff^2. Computed in double from the float
-  // densities.
-  void addSampleToA(uint32_t cell, uint32_t k, double pk, double pB, double peff, double w);
-  void addSampleToB(uint32_t cell, uint32_t k, glm::vec3 f, double pk, double pB, double peff, double w);
+  // The statistics weight of a sample of a vertex in `cell` with path throughput `throughput` in
+  // `pixel` (docs/estimator.md §5): shared/cms_layouts.h relativeSampleWeight, 1 without relative
+  // weighting; 0 for no cell or while the cell does not gather.
+  double statisticsWeight(uint32_t cell, glm::vec3 throughput, uint32_t pixel) const;
   void countVertex(uint32_t cell) { cellSamples_[cell].fetch_add(1, std::memory_order_relaxed); }
 
   // Between sample passes: solves every cell (cms/reference_solve.h), which keeps a cell's
@@ -71,7 +65,9 @@ class CpuCmsCells {
   uint64_t cellsUsed() const;
   uint64_t verticesWithoutCell() const { return verticesWithoutCell_.load(); }
 
-  // For the accessor macros of the shared headers (cpu/cpu_cms_access.h).
+  // For the accessor macros of the shared headers (cpu/cpu_kernel_access.h). addStatistic adds one
+  // term of shared/cms_vertex_terms.h to a cell (a compare-exchange loop: workers add at once).
+  void addStatistic(uint32_t cell, uint32_t index, double value);
   uint64_t keyLoad(uint32_t slot) const { return keys_[slot].load(std::memory_order_acquire); }
   uint64_t keyCompareSwap(uint32_t slot, uint64_t expected, uint64_t desired) {
     keys_[slot].compare_exchange_strong(expected, desired, std::memory_order_acq_rel);
@@ -84,7 +80,6 @@ class CpuCmsCells {
 
  private:
   void solveCell(uint32_t cell);
-  void add(uint32_t cell, uint32_t index, double value);
 
   uint32_t L_;
   CellGridSetup grid_;

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "cpu/cpu_cms_access.h"
+#include "cpu/cpu_kernel_access.h"
 #include "shared/bsdf.h"
 #include "shared/ray_offset.h"
 #include "shared/rng.h"
@@ -11,164 +11,190 @@
 namespace mixtrace {
 namespace {
 
+using namespace shared;
+
 // What the BSDF sample of the previous vertex left for the next one: its terms depend on what it
 // hits (docs/estimator.md §3), so they are paid once the next hit is known (shade.comp's cv* path
 // state).
 struct PendingBsdfSample {
   float pdf = 0.0f;              // p_B; 0: camera ray, nothing pending
-  uint32_t cell = shared::kNoCell;
+  uint32_t cell = kNoCell;
   glm::vec3 throughput{0.0f};    // path throughput at the vertex that drew it
   glm::vec3 bsdfCos{0.0f};       // bsdf * |cos| of its direction
 };
 
-}  // namespace
+// What the steps below know of a surface vertex (shade.comp's Vertex).
+struct Vertex {
+  SurfaceHit sh;
+  BsdfParams bsdf;
+  OrthonormalBasis frame;
+  vec3 wo;       // towards the previous vertex, in the shading frame
+  vec3 next;     // the offset origin of the rays leaving the vertex
+  vec3 beta;     // the path throughput up to the vertex
+  uint cell;     // the vertex's cell (kNoCell: none)
+  bool cv;       // the cell pays a control variate
+};
 
-glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, const CmsPathContext& ctx,
-                       RenderCounters& counters) {
-  using namespace shared;
-  CpuCmsCells& cells = *ctx.cells;
-  const uint L = cells.clusterCount();
-  const bool controlVariate = cells.controlVariate();
-  auto weightOf = [&](vec3 throughput) { return cells.sampleWeight(throughput, ctx.pixel); };
+// One path, in the steps of shade.comp (and shadow.comp, whose shadow ray is traced at once). The
+// terms are shared/cms_vertex_terms.h's; only when each is paid is written here.
+class CmsPath {
+ public:
+  CmsPath(const CmsPathContext& ctx, RenderCounters& counters)
+      : ctx_(ctx), counters_(counters), cells_(*ctx.cells), L_(cells_.clusterCount()),
+        controlVariate_(cells_.controlVariate()) {
+    grid_.origin = cells_.grid().origin;
+    grid_.invCellSize = cells_.grid().invCellSize;
+    grid_.tableSize = cells_.grid().tableSize;
+  }
 
-  vec3 radiance(0.0f), beta(1.0f);
-  PendingBsdfSample pending;
-  for (uint32_t depth = 1; depth <= ctx.maxDepth; ++depth) {
-    ++counters.extensionRays;
-    HitRecord hit = traceClosest(origin, direction, kFloatMax);
-    const bool hitEmitter = hit.triangle != kNoHit && TRIANGLE_SHADING(hit.triangle).emitter >= 0;
-    const vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -direction) : vec3(0.0f);
-    SurfaceHit sh;
-    if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
+  vec3 trace(vec3 origin, vec3 direction, uint32_t& rng) {
+    vec3 beta(1.0f);
+    PendingBsdfSample pending;
+    for (uint32_t depth = 1; depth <= ctx_.maxDepth; ++depth) {
+      ++counters_.extensionRays;
+      HitRecord hit = traceClosest(origin, direction, kFloatMax);
+      const bool hitEmitter = hit.triangle != kNoHit && TRIANGLE_SHADING(hit.triangle).emitter >= 0;
+      const vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -direction) : vec3(0.0f);
+      SurfaceHit sh;
+      if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
 
-    // The previous vertex's BSDF sample, now that its hit is known.
-    float emissionWeight = 1.0f;
-    if (pending.pdf > 0.0f) {
-      uint j = kNoCell;
-      float pj = 0.0f;
-      // A light point that emits nothing towards the vertex counts as no light point (shade.comp).
-      if (!isBlack(le)) {
-        j = LIGHT_CLUSTER(lightOfTriangle(hit.triangle));
-        pj = clusterPointPdf(hit.triangle, origin, sh.position);
-      }
-      float peff = (j != kNoCell ? clusterSelectPmf(pending.cell, L, j) * pj : 0.0f) + pending.pdf;
-      emissionWeight = pending.pdf / peff;
-      if (controlVariate && cellSolutionValid(pending.cell, L)) {
-        vec3 g = cellAlphaB(pending.cell, L) * pending.pdf;
-        if (j != kNoCell) g += cellAlpha(pending.cell, L, j) * pj;
-        radiance -= pending.throughput * g / peff;
-      }
-      if (pending.cell != kNoCell && cells.gathering(pending.cell)) {
-        double w = weightOf(pending.throughput);
-        cells.addSampleToA(pending.cell, j, pj, pending.pdf, peff, w);
-        if (j != kNoCell) cells.addSampleToB(pending.cell, j, le * pending.bsdfCos, pj, pending.pdf, peff, w);
-      }
+      float emissionWeight = 1.0f;
+      if (pending.pdf > 0.0f) emissionWeight = settlePendingBsdfSample(pending, hit, sh, le, origin);
+      if (hit.triangle == kNoHit) break;   // no environment light: the path ends
+      if (isBlack(beta)) break;            // continued only to settle the terms above
+
+      // Emission reached by this ray (MIS weight against the mixture of the previous vertex).
+      if (hitEmitter) radiance_ += beta * le * (pending.pdf > 0.0f ? emissionWeight : 1.0f);
+      if (depth >= ctx_.maxDepth) break;
+
+      Vertex v;
+      v.sh = sh;
+      v.bsdf = surfaceBsdf(sh);
+      v.frame = makeOrthonormalBasis(sh.shadingNormal);
+      v.wo = toLocal(v.frame, -direction);
+      v.next = offsetRayOrigin(sh.position, hitPointError(hit.triangle, hit.u, hit.v), sh.geometricNormal);
+      v.beta = beta;
+      enterCell(v);
+      sampleLight(v, rng);
+      vec3 wiWorld;
+      if (!sampleBsdf(v, rng, pending, beta, wiWorld)) break;
+      origin = v.next;
+      direction = wiWorld;
     }
-    if (hit.triangle == kNoHit) break;   // no environment light: the path ends
-    if (isBlack(beta)) break;            // continued only to settle the terms above
+    return radiance_;
+  }
 
-    // Emission reached by this ray (MIS weight against the mixture of the previous vertex).
-    if (hitEmitter) radiance += beta * le * (pending.pdf > 0.0f ? emissionWeight : 1.0f);
-    if (depth >= ctx.maxDepth) break;
+ private:
+  // The previous vertex's BSDF sample, now that its hit is known (shade.comp
+  // settlePreviousBsdfSample); `from` is that vertex's ray origin. Returns the emission's weight.
+  float settlePendingBsdfSample(const PendingBsdfSample& pending, const HitRecord& hit, const SurfaceHit& sh,
+                                vec3 le, vec3 from) {
+    float pj;
+    uint j = clusterOfBsdfHit(hit.triangle, le, from, sh.position, pj);
+    float peff = bsdfSampleMixtureDensity(pending.cell, L_, j, pj, pending.pdf);
+    if (controlVariate_ && cellSolutionValid(pending.cell, L_))
+      radiance_ -= controlVariateTerm(pending.throughput, pending.cell, L_, j, pj, pending.pdf, peff);
+    addSampleStatistics(pending.cell, L_, j, pj, pending.pdf, peff, le * pending.bsdfCos,
+                        cells_.statisticsWeight(pending.cell, pending.throughput, ctx_.pixel));
+    return balanceWeight(pending.pdf, peff);
+  }
 
-    BsdfParams bsdf = surfaceBsdf(sh);
-    OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
-    vec3 wo = toLocal(frame, -direction);
-    vec3 next = offsetRayOrigin(sh.position, hitPointError(hit.triangle, hit.u, hit.v), sh.geometricNormal);
+  // The vertex's cell, counted while it gathers; a solved cell pays the integral (shade.comp enterCell).
+  void enterCell(Vertex& v) {
+    v.cell = findOrInsertCell(grid_, v.sh.position, v.sh.geometricNormal, v.sh.material);
+    if (v.cell == kNoCell) cells_.countVertexWithoutCell();
+    if (v.cell != kNoCell && cells_.gathering(v.cell)) cells_.countVertex(v.cell);
+    v.cv = controlVariate_ && cellSolutionValid(v.cell, L_);
+    if (v.cv) radiance_ += controlVariateIntegral(v.beta, v.cell, L_);
+  }
 
-    uint cell = cells.findCell(sh.position, sh.geometricNormal, sh.material);
-    if (cell != kNoCell && cells.gathering(cell)) cells.countVertex(cell);
-    const bool cv = controlVariate && cellSolutionValid(cell, L);
-    if (cv) radiance += beta * cellAlphaSum(cell, L);
-
-    // One light sample: a cluster from the cell's selection, a light in it, a point on that.
-    // Named draws: C++ leaves the order of constructor arguments unspecified.
+  // One light sample: a cluster from the cell's selection, a light in it, a point on that
+  // (shade.comp queueLightSample), and its shadow ray at once (shadow.comp). Named draws: C++
+  // leaves the order of constructor arguments unspecified.
+  void sampleLight(const Vertex& v, uint32_t& rng) {
     float uLight = rngNextFloat(rng);
     float uEmitter = rngNextFloat(rng);
     float uPointX = rngNextFloat(rng);
     float uPointY = rngNextFloat(rng);
     vec2 uPoint(uPointX, uPointY);
-    if (ctx.lightCount > 0) {
-      uint k = selectCluster(cell, L, uLight);
-      uint light = selectLightInCluster(k, rngNextFloat(rng));
-      LightSample ls;
-      bool carries = sampleLightPoint(sh.position, light, uEmitter, uPoint, ls);
-      float pk = LIGHT_CLUSTER_PMF(light) * ls.pdf;
-      ls.pdf = clusterSelectPmf(cell, L, k) * pk;   // c_k p_k: the mixture density of this sample
-      const bool cmsTerms = cell != kNoCell;
-      if (ls.pdf > 0.0f || cmsTerms) {
-        vec3 wi = toLocal(frame, ls.direction);
-        bool above = dot(ls.direction, sh.geometricNormal) > 0.0f;
-        if (!(ls.pdf > 0.0f)) {
-          // A point with no solid-angle density from here (e.g. in this surface's plane) is a
-          // hidden point: p_B = 0, and the terms only need ratios, so any positive p_k does.
-          above = false;
-          carries = false;
-          pk = 1.0f;
-          ls.pdf = clusterSelectPmf(cell, L, k);
-        }
-        // Hidden without a trace (shade.comp): below the surface, or emitting nothing towards it.
-        const bool reachable = above && carries;
-        float pB = (ls.isDelta || !reachable) ? 0.0f : bsdfPdf(bsdf, wo, wi);
-        float peff = ls.pdf + pB;
-        vec3 f(0.0f);
-        if (reachable) f = bsdfEval(bsdf, wo, wi) * std::abs(wi.z) * ls.radiance;
-        vec3 contribution = beta * f / peff;
-        if (reachable && (!isBlack(contribution) || cmsTerms)) ++counters.shadowRays;
-        if (!isBlack(contribution) || cmsTerms) {
-          bool visible = false;
-          if (reachable) {   // the shadow ray (shadow.comp)
-            vec3 shadowDirection;
-            float shadowLength;
-            shadowRay(next, ls, shadowDirection, shadowLength);
-            visible = !traceAny(next, shadowDirection, shadowLength);
-          }
-          if (visible) radiance += contribution;
-          // Whether the BSDF could have sampled this point depends on its visibility: a hidden
-          // point has p_B = 0 and p_eff = c_k p_k.
-          float pBSeen = visible ? pB : 0.0f;
-          float peffSeen = ls.pdf + pBSeen;
-          if (cmsTerms && peffSeen > 0.0f) {
-            if (cv) radiance -= beta * (cellAlpha(cell, L, k) * pk + cellAlphaB(cell, L) * pBSeen) / peffSeen;
-            if (cells.gathering(cell)) {
-              double w = weightOf(beta);
-              cells.addSampleToA(cell, k, pk, pBSeen, peffSeen, w);
-              if (visible) cells.addSampleToB(cell, k, f, pk, pBSeen, peffSeen, w);
-            }
-          }
-        }
-      }
+    if (ctx_.lightCount == 0) return;
+    uint k;
+    float pk;
+    LightSample ls;
+    bool carries = sampleClusterLight(v.cell, L_, v.sh.position, uLight, uEmitter, uPoint, rng, k, pk, ls);
+    const bool cmsTerms = v.cell != kNoCell;
+    if (!(ls.pdf > 0.0f || cmsTerms)) return;
+    vec3 wi = toLocal(v.frame, ls.direction);
+    const bool reachable = lightPointReachable(v.cell, L_, k, v.sh.geometricNormal, carries, pk, ls);
+    float pB;
+    vec3 f = lightSampleIntegrand(v.bsdf, v.wo, wi, ls, reachable, pB);
+    float peff = lightSampleMixtureDensity(ls.pdf, pB);
+    vec3 contribution = v.beta * f / peff;
+    if (reachable && (!isBlack(contribution) || cmsTerms)) ++counters_.shadowRays;
+    if (isBlack(contribution) && !cmsTerms) return;
+    bool visible = false;
+    if (reachable) {   // the shadow ray (shadow.comp)
+      vec3 shadowDirection;
+      float shadowLength;
+      shadowRay(v.next, ls, shadowDirection, shadowLength);
+      visible = !traceAny(v.next, shadowDirection, shadowLength);
     }
+    if (visible) radiance_ += contribution;
+    // Whether the BSDF could have sampled this point depends on its visibility: a hidden point
+    // has p_B = 0 and p_eff = c_k p_k.
+    float pBSeen = visible ? pB : 0.0f;
+    float peffSeen = lightSampleMixtureDensity(ls.pdf, pBSeen);
+    if (!(cmsTerms && peffSeen > 0.0f)) return;
+    if (v.cv) radiance_ -= controlVariateTerm(v.beta, v.cell, L_, k, pk, pBSeen, peffSeen);
+    addSampleStatistics(v.cell, L_, k, pk, pBSeen, peffSeen, visible ? f : vec3(0.0f),
+                        cells_.statisticsWeight(v.cell, v.beta, ctx_.pixel));
+  }
 
-    // One BSDF sample: the next extension ray.
+  // One BSDF sample (shade.comp sampleBsdf): false when the path ends (a failed sample, settled at
+  // once); otherwise it becomes `pending`, `beta` the throughput beyond it, `wiWorld` its direction.
+  bool sampleBsdf(const Vertex& v, uint32_t& rng, PendingBsdfSample& pending, vec3& beta, vec3& wiWorld) {
     float uDirectionX = rngNextFloat(rng);
     float uDirectionY = rngNextFloat(rng);
     vec2 uDirection(uDirectionX, uDirectionY);
     float uLobe = rngNextFloat(rng);
     vec3 wiLocal(0.0f);
     float pdf = 0.0f;
-    bool sampled = bsdfSample(bsdf, wo, uDirection, uLobe, wiLocal, pdf) && pdf > 0.0f;
-    vec3 wiWorld = toWorld(frame, wiLocal);
-    if (!sampled || !(dot(wiWorld, sh.geometricNormal) > 0.0f)) {
+    bool sampled = bsdfSample(v.bsdf, v.wo, uDirection, uLobe, wiLocal, pdf) && pdf > 0.0f;
+    wiWorld = toWorld(v.frame, wiLocal);
+    if (!sampled || !(dot(wiWorld, v.sh.geometricNormal) > 0.0f)) {
       // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
-      // (docs/estimator.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
-      if (cv) radiance -= beta * cellAlphaB(cell, L);
-      if (cell != kNoCell && cells.gathering(cell))
-        cells.addSampleToA(cell, kNoCell, 0.0, 1.0, 1.0, weightOf(beta));
-      break;
+      // (docs/estimator.md §1): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
+      if (v.cv)
+        radiance_ -= controlVariateTerm(v.beta, v.cell, L_, kNoCell, 0.0f, kFailedBsdfSamplePdf, kFailedBsdfSamplePdf);
+      addSampleStatistics(v.cell, L_, kNoCell, 0.0, kFailedBsdfSamplePdf, kFailedBsdfSamplePdf, vec3(0.0f),
+                          cells_.statisticsWeight(v.cell, v.beta, ctx_.pixel));
+      return false;
     }
     // A path that can carry nothing more is still traced, so the next depth can settle this
     // sample's control-variate and statistics terms.
-    vec3 bsdfCos = bsdfEval(bsdf, wo, wiLocal) * std::abs(wiLocal.z);
+    vec3 bsdfCos = bsdfEval(v.bsdf, v.wo, wiLocal) * std::abs(wiLocal.z);
     pending.pdf = pdf;
-    pending.cell = cell;
-    pending.throughput = beta;
+    pending.cell = v.cell;
+    pending.throughput = v.beta;
     pending.bsdfCos = bsdfCos;
     beta *= bsdfCos / pdf;
-    origin = next;
-    direction = wiWorld;
+    return true;
   }
-  return radiance;
+
+  const CmsPathContext& ctx_;
+  RenderCounters& counters_;
+  CpuCmsCells& cells_;
+  const uint L_;
+  const bool controlVariate_;
+  CellGrid grid_{};
+  vec3 radiance_{0.0f};
+};
+
+}  // namespace
+
+glm::vec3 traceCmsPath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, const CmsPathContext& ctx,
+                       RenderCounters& counters) {
+  return CmsPath(ctx, counters).trace(origin, direction, rng);
 }
 
 }  // namespace mixtrace

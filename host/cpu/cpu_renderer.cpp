@@ -5,9 +5,8 @@
 #include <mutex>
 #include <thread>
 
-#include "cpu/cpu_cms_access.h"
 #include "cpu/cpu_cms_path.h"
-#include "scene/shared_scene_access.h"
+#include "cpu/cpu_kernel_access.h"
 #include "util/error.h"
 #include "shared/bsdf.h"
 #include "shared/camera.h"
@@ -104,10 +103,11 @@ CpuRenderer::CpuRenderer(const PreparedScene& scene, const MethodLights& lights,
   if (settings.maxDepth < 1) throw Error("--max-depth must be at least 1");
   if (lights.selection.size() != lightCount_) throw Error("internal: a light selection table of another scene");
   setUpTraining(settings);
-  gSharedScene = &scene_;
-  gLightSelection = &lights_.selection;
   if (settings.cms.clusters && !lights.cms.clusters.clusters.empty())
     cms_ = std::make_unique<CpuCmsCells>(lights.cms, scene.scene.bounds, settings, uint32_t(film_.size()));
+  kernel_.scene = &scene_;
+  kernel_.lightSelection = &lights_.selection;
+  kernel_.cms = cms_.get();
 }
 
 std::string CpuRenderer::deviceName() const {
@@ -155,9 +155,6 @@ void CpuRenderer::renderTile(uint32_t tile, uint32_t count, RenderCounters& loca
 }
 
 void CpuRenderer::renderSamples(uint32_t count) {
-  gSharedScene = &scene_;
-  gLightSelection = &lights_.selection;
-  gCpuCmsCells = cms_.get();
   if (!cms_) {
     renderPass(count);
     spp_ += count;
@@ -188,6 +185,7 @@ void CpuRenderer::renderPass(uint32_t count) {
   std::atomic<uint32_t> nextTile{0};
   std::mutex merge;
   auto worker = [&] {
+    CpuKernelBinding bind(kernel_);   // what the shared headers read on this thread
     RenderCounters local;
     for (uint32_t t = nextTile++; t < tiles; t = nextTile++) renderTile(t, count, local);
     std::lock_guard<std::mutex> lock(merge);

@@ -17,6 +17,7 @@
 #include "cms/method_lights.h"
 #include "cpu/cpu_cms_cells.h"
 #include "backend/renderer.h"
+#include "cpu/cpu_kernel_context.h"
 #include "scene/prepared_scene.h"
 
 namespace mixtrace {
@@ -56,6 +57,7 @@ class CpuRenderer : public Renderer {
   std::vector<PixelStats> film_;
   RenderCounters counters_;
   std::unique_ptr<CpuCmsCells> cms_;   // null for the pt-* methods
+  CpuKernelContext kernel_;            // the scene and cms_, bound by each worker thread
 };
 
 }  // namespace mixtrace

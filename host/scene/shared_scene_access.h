@@ -1,37 +1,38 @@
 #pragma once
 // Lets C++ run the shared shader headers (lights.h, surface.h, bvh_traverse.h, ...) on a
 // PreparedScene: binds their buffer-access macros to the scene's arrays and turns every feature
-// switch on (the CPU needs no specialisation). Include this instead of those headers, and point
-// mixtrace::gSharedScene at the scene and mixtrace::gLightSelection at the method's selection
-// table (one LightSelectionGpu per light, scene/light_selection.h) first. The headers have
-// internal linkage, so a translation unit that binds the macros differently cannot collide with
-// this one.
+// switch on (the CPU needs no specialisation). Include this instead of those headers, after
+// defining SHARED_SCENE as an expression naming the scene (a `const PreparedScene&`) and
+// SHARED_LIGHT_SELECTION as one naming the method's selection table (a `const
+// std::vector<LightSelectionGpu>&`, one entry per light, scene/light_selection.h): no process
+// global, so each includer decides where they come from (the CPU reference: the calling thread's
+// context, cpu/cpu_kernel_access.h). The headers have internal linkage, so a translation unit that
+// binds the macros differently cannot collide with this one.
 #include <vector>
 
 #include "scene/light_selection.h"
 #include "scene/prepared_scene.h"
 #include "shared/layouts.h"
 
-namespace mixtrace {
-// The scene the shared headers read in this process (set before calling into them).
-inline const PreparedScene* gSharedScene = nullptr;
-// How the method picks the scene's lights, read by the same headers (LIGHT_SELECT_*, LIGHT_CLUSTER*).
-inline const std::vector<shared::LightSelectionGpu>* gLightSelection = nullptr;
-}  // namespace mixtrace
+#if !defined(SHARED_SCENE) || !defined(SHARED_LIGHT_SELECTION)
+#error "define SHARED_SCENE (the PreparedScene) and SHARED_LIGHT_SELECTION (the method's table) before including scene/shared_scene_access.h"
+#endif
 
-#define BVH_NODE(i) (::mixtrace::gSharedScene->bvh.nodes[i])
-#define BVH_TRIANGLE(i) (::mixtrace::gSharedScene->bvh.triangles[i])
-#define TRIANGLE(i) (::mixtrace::gSharedScene->bvh.triangles[i])
-#define TRIANGLE_SHADING(i) (::mixtrace::gSharedScene->shading[i])
-#define MATERIAL(i) (::mixtrace::gSharedScene->scene.materials[i])
-#define TEXTURE(i) (::mixtrace::gSharedScene->textures[i])
-#define TEXEL(i) (::mixtrace::gSharedScene->texels[i])
-#define LIGHT(i) (::mixtrace::gSharedScene->lights.lights[i])
-#define EMITTER(i) (::mixtrace::gSharedScene->lights.emitters[i])
-#define LIGHT_SELECT_PMF(i) ((*::mixtrace::gLightSelection)[i].pmf)
-#define LIGHT_SELECT_CDF(i) ((*::mixtrace::gLightSelection)[i].cdf)
-#define LIGHT_CLUSTER(i) ((*::mixtrace::gLightSelection)[i].cluster)
-#define LIGHT_CLUSTER_PMF(i) ((*::mixtrace::gLightSelection)[i].clusterPmf)
+#define BVH_NODE(i) (SHARED_SCENE.bvh.nodes[i])
+#define BVH_TRIANGLE(i) (SHARED_SCENE.bvh.triangles[i])
+#define TRIANGLE(i) (SHARED_SCENE.bvh.triangles[i])
+#define TRIANGLE_SHADING(i) (SHARED_SCENE.shading[i])
+#define MATERIAL(i) (SHARED_SCENE.scene.materials[i])
+#define TEXTURE(i) (SHARED_SCENE.textures[i])
+#define TEXEL(i) (SHARED_SCENE.texels[i])
+#define LIGHT(i) (SHARED_SCENE.lights.lights[i])
+#define EMITTER(i) (SHARED_SCENE.lights.emitters[i])
+// How the method picks the scene's lights; a light's cluster and its pmf inside the cluster
+// (docs/estimator.md §2) are read only through these.
+#define LIGHT_SELECT_PMF(i) (SHARED_LIGHT_SELECTION[i].pmf)
+#define LIGHT_SELECT_CDF(i) (SHARED_LIGHT_SELECTION[i].cdf)
+#define LIGHT_CLUSTER(light) (SHARED_LIGHT_SELECTION[light].cluster)
+#define LIGHT_CLUSTER_PMF(light) (SHARED_LIGHT_SELECTION[light].clusterPmf)
 #define HAS_TEXTURES true
 #define HAS_AREA_LIGHTS true
 #define HAS_PUNCTUAL_LIGHTS true

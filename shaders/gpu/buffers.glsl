@@ -59,7 +59,9 @@ PASS_UNREAD_BUFFERS(DECLARE_BUFFER)
 #define TEXEL(i) texels[i]
 #define LIGHT(i) lights[i]
 #define EMITTER(i) emitters[i]
+// How the method picks the scene's lights (shared/method_buffers.h); a light's cluster and its pmf
+// inside the cluster (docs/estimator.md §2) are read only through these.
 #define LIGHT_SELECT_PMF(i) lightSelection[i].pmf
 #define LIGHT_SELECT_CDF(i) lightSelection[i].cdf
-#define LIGHT_CLUSTER(i) lightSelection[i].cluster
-#define LIGHT_CLUSTER_PMF(i) lightSelection[i].clusterPmf
+#define LIGHT_CLUSTER(light) lightSelection[light].cluster
+#define LIGHT_CLUSTER_PMF(light) lightSelection[light].clusterPmf

@@ -1,8 +1,8 @@
-// Adding one sample's terms to its cell's statistics (docs/estimator.md §4): with p = (.., p_k, ..,
-// p_B) and the mixture density p_eff, A_ij += w p_i p_j / p_eff^2 and b_i += w f p_i / p_eff^2.
-// Clusters are disjoint, so a sample touches only A_kk, A_kB, A_BB, b_k and b_B. Float atomics:
-// many vertices of one cell add at once. Included by the shade and shadow stages, after
-// gpu/buffers.glsl and gpu/cms_buffers.glsl.
+// The GPU's side of the statistics of controlled mixture sampling (docs/estimator.md §4, §5): when
+// a sample gathers, its weight, and the add of one term to a cell (float atomics, or compare-and-
+// swap loops), which binds the accessor CMS_ADD_STAT of shared/cms_vertex_terms.h; the terms
+// themselves are that header's. Many vertices of one cell add at once, hence the atomics.
+// Included by the shade and shadow stages, after gpu/buffers.glsl and gpu/cms_buffers.glsl.
 #include "shared/cms_cells.h"
 #include "shared/cms_sampling.h"
 #include "shared/cms_layouts.h"
@@ -47,43 +47,20 @@ void addStat(uint cell, uint index, float value) {
 }
 #endif
 
-// k = kNoCell: the sample lies in no cluster's support (a BSDF sample that hit no light). The
-// ratios p / p_eff (<= 1/c_k and <= 1) are formed first: p_eff^2 overflows for p_eff > 1.8e19
-// (a tiny emitter seen edge-on), and Inf * 0 would put a NaN into the cell.
-void addSampleToA(uint cell, uint k, float pk, float pB, float peff, float w) {
-  uint L = pc.clusterCount;
-  float rk = pk / peff;
-  float rB = pB / peff;
-  if (k != kNoCell) {
-    addStat(cell, statsAkk(L, k), w * rk * rk);
-    addStat(cell, statsAkB(L, k), w * rk * rB);
-  }
-  addStat(cell, statsABB(L), w * rB * rB);
-}
-
-// b_k += w f p_k / p_eff^2 and b_B += w f p_B / p_eff^2; f is the integrand (without throughput).
-void addSampleToB(uint cell, uint k, vec3 f, float pk, float pB, float peff, float w) {
-  uint L = pc.clusterCount;
-  float scaleK = w * (pk / peff) / peff;
-  float scaleB = w * (pB / peff) / peff;
-  for (uint c = 0u; c < 3u; ++c) {
-    if (k != kNoCell) addStat(cell, statsBk(L, k, c), f[c] * scaleK);
-    addStat(cell, statsBB(L, c), f[c] * scaleB);
-  }
-}
+#define CMS_STAT_REAL float
+#define CMS_ADD_STAT(cell, index, value) addStat(cell, index, value)
+#include "shared/cms_vertex_terms.h"
 
 // The control-variate and statistics terms of a light sample once its visibility is known (the
 // shadow pass) or known not to matter (a hidden point, in the shade pass): the point z on cluster
-// k has density c_k p_k from light sampling and pB from BSDF sampling (0 when hidden or blocked),
-// integrand f (0 when blocked), at a vertex of `cell` with throughput `beta` on path `path`.
+// k has density c_k p_k from light sampling (carried as ck and pk on the shadow ray) and pB from
+// BSDF sampling (0 when hidden or blocked), integrand f (0 when blocked), at a vertex of `cell`
+// with throughput `beta` on path `path`.
 void settleLightSample(uint cell, uint k, float pk, float ck, float pB, vec3 f, vec3 beta, uint path) {
   uint L = pc.clusterCount;
-  float peff = ck * pk + pB;
+  float peff = lightSampleMixtureDensity(ck * pk, pB);
   if (!(peff > 0.0)) return;
   if (CMS_CONTROL_VARIATE && cellSolutionValid(cell, L))
-    radiance[path] -= beta * (cellAlpha(cell, L, k) * pk + cellAlphaB(cell, L) * pB) / peff;
-  float w = sampleWeight(beta, path, cell);
-  if (w == 0.0) return;
-  addSampleToA(cell, k, pk, pB, peff, w);
-  if (!isBlack(f)) addSampleToB(cell, k, f, pk, pB, peff, w);
+    radiance[path] -= controlVariateTerm(beta, cell, L, k, pk, pB, peff);
+  addSampleStatistics(cell, L, k, pk, pB, peff, f, sampleWeight(beta, path, cell));
 }

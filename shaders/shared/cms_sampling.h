@@ -4,10 +4,10 @@
 // so the mixture density of a light sample is sum_k c_k p_k(z) = c_k p_k(z) (clusters are
 // disjoint).
 //
-// The includer defines, besides the accessors of lights.h: LIGHT_CLUSTER_PMF(i) -> float (a light's
-// pmf inside its cluster), CLUSTER(i) -> ClusterGpu, CLUSTER_LIGHT(i) -> ClusterLightGpu,
-// CELL_SOLUTION(i) -> float (the solve pass's output) and CLUSTER_DEFAULT(k) -> float (the default
-// selection pmf).
+// The includer defines, besides the accessors of lights.h: LIGHT_CLUSTER_PMF(light) -> float (the
+// light's pmf inside its cluster), CLUSTER(i) -> ClusterGpu,
+// CLUSTER_LIGHT(i) -> ClusterLightGpu, CELL_SOLUTION(i) -> float (the solve pass's output) and
+// CLUSTER_DEFAULT(k) -> float (the default selection pmf).
 #ifndef MIXTRACE_SHARED_CMS_SAMPLING_H
 #define MIXTRACE_SHARED_CMS_SAMPLING_H
 #include "shared/cluster_layout.h"

@@ -18,12 +18,169 @@
 #include "gpu/cms_statistics.glsl"
 #include "shared/bsdf.h"
 #include "shared/cms_sampling.h"
+#include "shared/cms_vertex_terms.h"
 #include "shared/ray_offset.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
 #include "shared/surface.h"
 
 layout(local_size_x = kWorkgroupSize) in;
+
+// What the steps below know of the vertex at this ray's hit.
+struct Vertex {
+  uint path;
+  SurfaceHit sh;
+  BsdfParams bsdf;
+  OrthonormalBasis frame;
+  vec3 wo;       // towards the previous vertex, in the shading frame
+  vec3 origin;   // the offset origin of the rays leaving the vertex
+  vec3 beta;     // the path throughput up to the vertex
+  uint cell;     // CMS: the vertex's cell (kNoCell: none, or no CMS)
+  bool cv;       // CMS: the cell pays a control variate
+};
+
+// CMS: the previous vertex's BSDF sample, now that its hit is known (docs/estimator.md §3, §4): it
+// pays its control-variate term and adds its statistics. Returns the balance-heuristic weight of
+// the emission it reached against the cell's light selection.
+float settlePreviousBsdfSample(uint path, HitRecord hit, SurfaceHit sh, vec3 le, float prevPdfB) {
+  uint L = pc.clusterCount;
+  uint prevCell = cvState[path].cell;
+  float pj;
+  uint j = clusterOfBsdfHit(hit.triangle, le, rayOrigin[path], sh.position, pj);
+  float peff = bsdfSampleMixtureDensity(prevCell, L, j, pj, prevPdfB);
+  if (CMS_CONTROL_VARIATE && cellSolutionValid(prevCell, L))
+    radiance[path] -= controlVariateTerm(cvState[path].throughput, prevCell, L, j, pj, prevPdfB, peff);
+  if (prevCell != kNoCell && passGathersStatistics())
+    addSampleStatistics(prevCell, L, j, pj, prevPdfB, peff, le * cvState[path].bsdfCos,
+                        sampleWeight(cvState[path].throughput, path, prevCell));
+  return balanceWeight(prevPdfB, peff);
+}
+
+// Emission reached by this ray, weighted against light sampling (a camera ray's is not: p_B = 0).
+void addEmission(uint path, HitRecord hit, SurfaceHit sh, vec3 le, vec3 beta, float prevPdfB, float cmsWeight) {
+  float w = 1.0;
+  if (prevPdfB > 0.0) {
+    if (CMS_SELECTION) {
+      w = cmsWeight;
+    } else {
+      float lightPdf = areaLightPdf(hit.triangle, rayOrigin[path], sh.position);
+      w = prevPdfB / (prevPdfB + lightPdf);
+    }
+  }
+  radiance[path] += beta * le * w;
+}
+
+// CMS: the vertex's cell (found or claimed), counted while it gathers, shown by the viewer's cell
+// views at depth 1; a cell with a solution pays the control variate's integral at once (§3).
+void enterCell(INOUT(Vertex) v) {
+  uint L = pc.clusterCount;
+  CellGrid grid;
+  grid.origin = pc.gridOrigin;
+  grid.invCellSize = pc.gridInvCellSize;
+  grid.tableSize = pc.cellTableSize;
+  v.cell = findOrInsertCell(grid, v.sh.position, v.sh.geometricNormal, v.sh.material);
+  if (v.cell != kNoCell) {
+    if (gatheringStatistics(v.cell)) atomicAdd(cellSamples[v.cell], 1u);
+  }
+  else atomicAdd(queues.verticesWithoutCell, 1u);
+  if (pc.depth == 1u) firstCell[pc.pixelOffset + v.path] = v.cell;
+  v.cv = CMS_CONTROL_VARIATE && cellSolutionValid(v.cell, L);
+  if (v.cv) radiance[v.path] += controlVariateIntegral(v.beta, v.cell, L);
+}
+
+// One light sample (next event estimation), queued as a shadow ray with its contribution. Plain
+// MIS picks a light from the scene's selection; CMS a cluster from the cell's, and a hidden point
+// (§1, lightPointReachable) settles its terms at once, with no shadow ray; a reachable one with
+// the shadow ray, because whether the BSDF could have sampled it (p_B) depends on visibility.
+void queueLightSample(Vertex v, INOUT(uint) rng) {
+  float uLight = rngNextFloat(rng);
+  float uEmitter = rngNextFloat(rng);
+  vec2 uPoint = vec2(rngNextFloat(rng), rngNextFloat(rng));
+  if (pc.lightCount == 0u) return;
+  uint L = pc.clusterCount;
+  LightSample ls;
+  bool carries;
+  uint k = kNoCell;
+  float pk = 0.0;
+  if (CMS_SELECTION) {
+    carries = sampleClusterLight(v.cell, L, v.sh.position, uLight, uEmitter, uPoint, rng, k, pk, ls);
+  } else {
+    carries = sampleLight(v.sh.position, pc.lightCount, uLight, uEmitter, uPoint, ls);
+  }
+  bool cmsTerms = CMS_SELECTION && v.cell != kNoCell;
+  if (!(ls.pdf > 0.0 || cmsTerms)) return;
+  vec3 wi = toLocal(v.frame, ls.direction);
+  bool reachable = lightPointReachable(v.cell, L, k, v.sh.geometricNormal, carries, pk, ls);
+  float pB;
+  vec3 f = lightSampleIntegrand(v.bsdf, v.wo, wi, ls, reachable, pB);
+  float peff = lightSampleMixtureDensity(ls.pdf, pB);
+  vec3 contribution = v.beta * f / peff;
+  float ck = ls.pdf / max(pk, 1e-38);   // the cell's c_k (ls.pdf = c_k p_k)
+  if (cmsTerms && !reachable) {
+    settleLightSample(v.cell, k, pk, ck, 0.0, f, v.beta, v.path);
+  } else if (!isBlack(contribution) || cmsTerms) {
+    ShadowRay s;
+    s.origin = v.origin;
+    shadowRay(v.origin, ls, s.direction, s.tMax);
+    s.path = v.path;
+    s.contribution = contribution;
+    s.cell = v.cell;
+    s.integrand = f;
+    s.cluster = k;
+    s.throughput = v.beta;
+    s.pk = pk;
+    s.pB = pB;
+    s.ck = ck;
+    s.flags = cmsTerms ? kShadowRayCms : 0u;
+    s.pad = 0.0;
+    uint slot = atomicAdd(queues.shadowCount, 1u);
+    shadowQueue[slot] = s;
+  }
+}
+
+// One BSDF sample: the next extension ray. Under CMS its terms depend on what it hits, so the
+// path state keeps what the next depth's settlePreviousBsdfSample needs; a failed sample settles
+// at once.
+void sampleBsdf(Vertex v, INOUT(uint) rng) {
+  vec2 uDir = vec2(rngNextFloat(rng), rngNextFloat(rng));
+  float uLobe = rngNextFloat(rng);
+  vec3 wiLocal;
+  float pdf;
+  rngState[v.path] = rng;
+  bool sampled = bsdfSample(v.bsdf, v.wo, uDir, uLobe, wiLocal, pdf) && pdf > 0.0;
+  vec3 wiWorld = toWorld(v.frame, wiLocal);
+  if (!sampled || !(dot(wiWorld, v.sh.geometricNormal) > 0.0)) {
+    // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
+    // (docs/estimator.md §1): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
+    uint L = pc.clusterCount;
+    if (v.cv)
+      radiance[v.path] -= controlVariateTerm(v.beta, v.cell, L, kNoCell, 0.0, kFailedBsdfSamplePdf, kFailedBsdfSamplePdf);
+    if (CMS_SELECTION && v.cell != kNoCell && passGathersStatistics())
+      addSampleStatistics(v.cell, L, kNoCell, 0.0, kFailedBsdfSamplePdf, kFailedBsdfSamplePdf, vec3(0.0),
+                          sampleWeight(v.beta, v.path, v.cell));
+    return;
+  }
+  vec3 bsdfCos = bsdfEval(v.bsdf, v.wo, wiLocal) * abs(wiLocal.z);
+  vec3 weight = bsdfCos / pdf;
+  // Without CMS a path that can carry nothing more ends; with it, the ray is still traced so the
+  // next depth can settle this sample's control-variate and statistics terms.
+  if (!CMS_SELECTION && isBlack(weight)) return;
+  throughput[v.path] = v.beta * weight;
+  misPdf[v.path] = pdf;
+  rayOrigin[v.path] = v.origin;
+  rayDirection[v.path] = wiWorld;
+  if (CMS_SELECTION) {
+    CvPathState state;
+    state.throughput = v.beta;
+    state.cell = v.cell;
+    state.bsdfCos = bsdfCos;
+    state.pad = 0.0;
+    cvState[v.path] = state;
+  }
+  uint queueOut = 1u - pc.queueIn;
+  uint slot = atomicAdd(queues.rayCount[queueOut], 1u);
+  rayQueue[queueOut * pc.pathCount + slot] = v.path;
+}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -32,183 +189,35 @@ void main() {
   HitRecord hit = hits[path];
   vec3 dir = rayDirection[path];
   vec3 beta = throughput[path];
-  uint L = pc.clusterCount;
   float prevPdfB = misPdf[path];   // p_B of the BSDF sample that made this ray; 0 for camera rays
   bool hitEmitter = hit.triangle != kNoHit && HAS_AREA_LIGHTS && triangleShading[hit.triangle].emitter >= 0;
   vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -dir) : vec3(0.0);
   SurfaceHit sh;
   if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, dir);
 
-  // CMS: the previous vertex's BSDF sample, now that its hit is known.
-  float emissionWeight = 1.0;
-  if (CMS_SELECTION && prevPdfB > 0.0) {
-    uint prevCell = cvState[path].cell;
-    uint j = kNoCell;
-    float pj = 0.0;
-    // A light point that emits nothing towards the vertex (a one-sided emitter's back) counts as
-    // no light point at all, for BSDF and light samples alike (see the light sample below).
-    if (!isBlack(le)) {
-      j = LIGHT_CLUSTER(lightOfTriangle(hit.triangle));
-      pj = clusterPointPdf(hit.triangle, rayOrigin[path], sh.position);
-    }
-    float peff = (j != kNoCell ? clusterSelectPmf(prevCell, L, j) * pj : 0.0) + prevPdfB;
-    emissionWeight = prevPdfB / peff;
-    if (CMS_CONTROL_VARIATE && cellSolutionValid(prevCell, L)) {
-      vec3 g = cellAlphaB(prevCell, L) * prevPdfB;
-      if (j != kNoCell) g += cellAlpha(prevCell, L, j) * pj;
-      radiance[path] -= cvState[path].throughput * g / peff;
-    }
-    if (prevCell != kNoCell && passGathersStatistics()) {
-      float w = sampleWeight(cvState[path].throughput, path, prevCell);
-      if (w > 0.0) addSampleToA(prevCell, j, pj, prevPdfB, peff, w);
-      if (w > 0.0 && j != kNoCell) addSampleToB(prevCell, j, le * cvState[path].bsdfCos, pj, prevPdfB, peff, w);
-    }
-  }
+  float cmsEmissionWeight = 1.0;
+  if (CMS_SELECTION && prevPdfB > 0.0) cmsEmissionWeight = settlePreviousBsdfSample(path, hit, sh, le, prevPdfB);
   // The viewer's cell views show the cell of each pixel's first hit (none where the ray escapes).
   if (CMS_SELECTION && pc.depth == 1u && hit.triangle == kNoHit) firstCell[pc.pixelOffset + path] = kNoCell;
   if (hit.triangle == kNoHit) return;   // no environment light: the path ends
   if (isBlack(beta)) return;            // continued only to settle the terms above
 
-  // Emission reached by this ray.
-  if (hitEmitter) {
-    float w = 1.0;
-    if (prevPdfB > 0.0) {
-      if (CMS_SELECTION) {
-        w = emissionWeight;
-      } else {
-        float lightPdf = areaLightPdf(hit.triangle, rayOrigin[path], sh.position);
-        w = prevPdfB / (prevPdfB + lightPdf);
-      }
-    }
-    radiance[path] += beta * le * w;
-  }
+  if (hitEmitter) addEmission(path, hit, sh, le, beta, prevPdfB, cmsEmissionWeight);
   if (pc.depth >= pc.maxDepth) return;
 
+  Vertex v;
+  v.path = path;
+  v.sh = sh;
+  v.bsdf = surfaceBsdf(sh);
+  v.frame = makeOrthonormalBasis(sh.shadingNormal);
+  v.wo = toLocal(v.frame, -dir);
+  v.origin = offsetRayOrigin(sh.position, hitPointError(hit.triangle, hit.u, hit.v), sh.geometricNormal);
+  v.beta = beta;
+  v.cell = kNoCell;
+  v.cv = false;
+  if (CMS_SELECTION) enterCell(v);
+
   uint rng = rngState[path];
-  BsdfParams bsdf = surfaceBsdf(sh);
-  OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
-  vec3 wo = toLocal(frame, -dir);
-  vec3 origin = offsetRayOrigin(sh.position, hitPointError(hit.triangle, hit.u, hit.v), sh.geometricNormal);
-
-  uint cell = kNoCell;
-  bool cv = false;
-  if (CMS_SELECTION) {
-    CellGrid grid;
-    grid.origin = pc.gridOrigin;
-    grid.invCellSize = pc.gridInvCellSize;
-    grid.tableSize = pc.cellTableSize;
-    cell = findOrInsertCell(grid, sh.position, sh.geometricNormal, sh.material);
-    if (cell != kNoCell) {
-      if (gatheringStatistics(cell)) atomicAdd(cellSamples[cell], 1u);
-    }
-    else atomicAdd(queues.verticesWithoutCell, 1u);
-    if (pc.depth == 1u) firstCell[pc.pixelOffset + path] = cell;
-    cv = CMS_CONTROL_VARIATE && cellSolutionValid(cell, L);
-    if (cv) radiance[path] += beta * cellAlphaSum(cell, L);
-  }
-
-  // One light sample (next event estimation).
-  float uLight = rngNextFloat(rng);
-  float uEmitter = rngNextFloat(rng);
-  vec2 uPoint = vec2(rngNextFloat(rng), rngNextFloat(rng));
-  if (pc.lightCount > 0u) {
-    LightSample ls;
-    bool carries;
-    uint k = kNoCell;
-    float pk = 0.0;
-    if (CMS_SELECTION) {
-      k = selectCluster(cell, L, uLight);
-      uint light = selectLightInCluster(k, rngNextFloat(rng));
-      carries = sampleLightPoint(sh.position, light, uEmitter, uPoint, ls);
-      pk = LIGHT_CLUSTER_PMF(light) * ls.pdf;
-      ls.pdf = clusterSelectPmf(cell, L, k) * pk;
-    } else {
-      carries = sampleLight(sh.position, pc.lightCount, uLight, uEmitter, uPoint, ls);
-    }
-    bool cmsTerms = CMS_SELECTION && cell != kNoCell;
-    if (ls.pdf > 0.0 || cmsTerms) {
-      vec3 wi = toLocal(frame, ls.direction);
-      bool above = dot(ls.direction, sh.geometricNormal) > 0.0;
-      if (!(ls.pdf > 0.0)) {
-        // A point with no solid-angle density from here (in this surface's plane, e.g. a light
-        // sampling itself) is a hidden point: p_B = 0 there, and with p_k in the light's own area
-        // measure the terms only need ratios, so any positive p_k does (docs/estimator.md §1).
-        above = false;
-        carries = false;
-        pk = 1.0;
-        ls.pdf = clusterSelectPmf(cell, L, k);
-      }
-      // A point below the surface is hidden by the surface itself. A point that emits nothing
-      // towards this vertex (a one-sided emitter's back, a spot's outside) is, for controlled
-      // mixture sampling, a hidden point too, whatever lies between: the BSDF sample treats such
-      // a hit as no light either (above), so each technique's density stays the density of its
-      // own samples and every term stays unbiased, and no shadow ray is needed.
-      bool reachable = above && carries;
-      float pB = (ls.isDelta || !reachable) ? 0.0 : bsdfPdf(bsdf, wo, wi);
-      float peff = ls.pdf + pB;
-      vec3 f = vec3(0.0);
-      if (reachable) f = bsdfEval(bsdf, wo, wi) * abs(wi.z) * ls.radiance;
-      vec3 contribution = beta * f / peff;
-      float ck = ls.pdf / max(pk, 1e-38);   // the cell's c_k (ls.pdf = c_k p_k)
-      if (cmsTerms && !reachable) {
-        settleLightSample(cell, k, pk, ck, 0.0, f, beta, path);
-      } else if (!isBlack(contribution) || cmsTerms) {
-        // CMS: whether the BSDF could have sampled this point (p_B) depends on its visibility, so
-        // the sample's control-variate and statistics terms go with the shadow ray.
-        ShadowRay s;
-        s.origin = origin;
-        shadowRay(origin, ls, s.direction, s.tMax);
-        s.path = path;
-        s.contribution = contribution;
-        s.cell = cell;
-        s.integrand = f;
-        s.cluster = k;
-        s.throughput = beta;
-        s.pk = pk;
-        s.pB = pB;
-        s.ck = ck;
-        s.flags = cmsTerms ? kShadowRayCms : 0u;
-        s.pad = 0.0;
-        uint slot = atomicAdd(queues.shadowCount, 1u);
-        shadowQueue[slot] = s;
-      }
-    }
-  }
-
-  // One BSDF sample: the next extension ray.
-  vec2 uDir = vec2(rngNextFloat(rng), rngNextFloat(rng));
-  float uLobe = rngNextFloat(rng);
-  vec3 wiLocal;
-  float pdf;
-  rngState[path] = rng;
-  bool sampled = bsdfSample(bsdf, wo, uDir, uLobe, wiLocal, pdf) && pdf > 0.0;
-  vec3 wiWorld = toWorld(frame, wiLocal);
-  if (!sampled || !(dot(wiWorld, sh.geometricNormal) > 0.0)) {
-    // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
-    // (docs/estimator.md §2): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
-    if (cv) radiance[path] -= beta * cellAlphaB(cell, L);
-    if (CMS_SELECTION && cell != kNoCell && passGathersStatistics())
-      addStat(cell, statsABB(L), sampleWeight(beta, path, cell));
-    return;
-  }
-  vec3 bsdfCos = bsdfEval(bsdf, wo, wiLocal) * abs(wiLocal.z);
-  vec3 weight = bsdfCos / pdf;
-  // Without CMS a path that can carry nothing more ends; with it, the ray is still traced so the
-  // next depth can settle this sample's control-variate and statistics terms.
-  if (!CMS_SELECTION && isBlack(weight)) return;
-  throughput[path] = beta * weight;
-  misPdf[path] = pdf;
-  rayOrigin[path] = origin;
-  rayDirection[path] = wiWorld;
-  if (CMS_SELECTION) {
-    CvPathState state;
-    state.throughput = beta;
-    state.cell = cell;
-    state.bsdfCos = bsdfCos;
-    state.pad = 0.0;
-    cvState[path] = state;
-  }
-  uint queueOut = 1u - pc.queueIn;
-  uint slot = atomicAdd(queues.rayCount[queueOut], 1u);
-  rayQueue[queueOut * pc.pathCount + slot] = path;
+  queueLightSample(v, rng);
+  sampleBsdf(v, rng);
 }

@@ -10,6 +10,16 @@
 #include <gtest/gtest.h>
 
 #include "gltf/gltf_loader.h"
+#include "scene/light_selection.h"
+#include "scene/prepared_scene.h"
+// The scene and selection table the shared headers read in this test (scene/shared_scene_access.h:
+// its includer names them).
+namespace light_sampling_test {
+const mixtrace::PreparedScene* gScene = nullptr;
+const std::vector<mixtrace::shared::LightSelectionGpu>* gSelection = nullptr;
+}
+#define SHARED_SCENE (*::light_sampling_test::gScene)
+#define SHARED_LIGHT_SELECTION (*::light_sampling_test::gSelection)
 #include "scene/shared_scene_access.h"
 #include "support/chi2.h"
 #include "support/shipped_scenes.h"
@@ -24,8 +34,8 @@ TEST_P(LightSamplingOnScene, ReturnedPdfEqualsEvaluatedPdf) {
   for (LightSelection selection : {LightSelection::Uniform, LightSelection::Power}) {
     PreparedScene scene = prepareScene(loadGltf(GetParam()));
     const std::vector<shared::LightSelectionGpu> table = buildLightSelection(scene.lights, selection);
-    gSharedScene = &scene;
-    gLightSelection = &table;
+    light_sampling_test::gScene = &scene;
+    light_sampling_test::gSelection = &table;
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     const Bounds& b = scene.scene.bounds;
@@ -54,8 +64,8 @@ TEST_P(LightSamplingOnScene, ReturnedPdfEqualsEvaluatedPdf) {
 TEST_P(LightSamplingOnScene, SelectionFollowsPmf) {
   PreparedScene scene = prepareScene(loadGltf(GetParam()));
   const std::vector<shared::LightSelectionGpu> lights = buildLightSelection(scene.lights, LightSelection::Power);
-  gSharedScene = &scene;
-  gLightSelection = &lights;
+  light_sampling_test::gScene = &scene;
+  light_sampling_test::gSelection = &lights;
   double pmfSum = 0.0;
   for (auto& l : lights) pmfSum += l.pmf;
   EXPECT_NEAR(pmfSum, 1.0, 1e-5);
@@ -98,8 +108,8 @@ TEST(LightSampling, QuadIrradianceMatchesPolygonFormula) {
   for (auto& t : s.triangles) for (auto& p : t.p) s.bounds.grow(p);
   PreparedScene scene = prepareScene(s);
   const std::vector<shared::LightSelectionGpu> table = buildLightSelection(scene.lights, LightSelection::Power);
-  gSharedScene = &scene;
-  gLightSelection = &table;
+  light_sampling_test::gScene = &scene;
+  light_sampling_test::gSelection = &table;
 
   for (glm::vec3 p : {glm::vec3(0.0f), glm::vec3(0.7f, 0.2f, 0.1f), glm::vec3(-1.5f, 0.5f, 0.3f)}) {
     glm::vec3 n(0.0f, 1.0f, 0.0f);
