@@ -30,6 +30,7 @@ struct RenderSettings {
                                  // (docs/estimator.md §5)
   bool floatAtomics = true;      // Vulkan: float atomics for the statistics where the device has them
   uint32_t trainSpp = 0;         // no solve after this many samples (0 = train through the first half)
+  bool trainOnce = false;        // the paper's schedule: one solve after trainSpp (default 16) samples
 };
 
 // The parameters of the per-cell CMS solve for these settings (both backends).
@@ -78,7 +79,10 @@ class Renderer {
  protected:
   void setUpTraining(const RenderSettings& s) {
     schedule_.skipFirstSample(s.relativeWeighting);
-    schedule_.limitTraining(s.trainSpp);
+    if (s.trainOnce)
+      schedule_.solveOnceAfter(s.trainSpp != 0 ? s.trainSpp : kPaperTrainingSamples);
+    else
+      schedule_.limitTraining(s.trainSpp);
   }
   TrainingSchedule schedule_;
 };

@@ -6,9 +6,15 @@
 // sample 63 would serve one sample. So the last iteration runs from the last useful solve to the
 // end, and its samples gather nothing: no solve reads them. That is about half of every render's
 // samples, which then pay none of the statistics' cost. Both backends follow this one schedule.
+//
+// The published method trains once instead (docs/estimator.md §7, --training paper): statistics
+// from the first N samples (16 in the paper), one solve, and the rest of the render uses it.
 #include <cstdint>
 
 namespace mixtrace {
+
+// The published method's training length (Hua et al. 2023: 16 spp, then one solve).
+constexpr uint32_t kPaperTrainingSamples = 16;
 
 class TrainingSchedule {
  public:
@@ -22,9 +28,16 @@ class TrainingSchedule {
   // weights divide by (before it, every pixel would look black and every vertex get the largest
   // weight, and those statistics would outweigh all later ones).
   void skipFirstSample(bool skip) { skipFirst_ = skip; }
+  // --training paper: one solve, after `samples` samples, reading the statistics of all of them
+  // (but the first, with relative weighting: that one's solve only makes the pixel estimate).
+  void solveOnceAfter(uint32_t samples) { onceAfter_ = samples; }
 
   // Whether the cells are solved once `done` samples per pixel are complete.
   bool solvesAfter(uint32_t done) const {
+    if (onceAfter_ != 0) {
+      const bool serves = planned_ == 0 || planned_ > onceAfter_;   // a sample follows the solve
+      return serves && (done == onceAfter_ || (skipFirst_ && done == 1));
+    }
     if (done == 0 || ((done + 1) & done) != 0) return false;      // not 2^k - 1
     if (trainLimit_ != 0 && done > trainLimit_) return false;      // training is over
     return planned_ == 0 || uint64_t(done) * 2 + 1 <= planned_;    // the next iteration fits
@@ -34,6 +47,7 @@ class TrainingSchedule {
   // its iteration happens.
   bool gathers(uint32_t index) const {
     if (index == 0 && skipFirst_) return false;
+    if (onceAfter_ != 0) return index < onceAfter_ && solvesAfter(onceAfter_);
     uint64_t boundary = 1;   // the end of index's iteration: the smallest 2^k - 1 >= index + 1
     while (boundary < uint64_t(index) + 1) boundary = boundary * 2 + 1;
     return boundary > UINT32_MAX || solvesAfter(uint32_t(boundary));
@@ -42,6 +56,7 @@ class TrainingSchedule {
  private:
   uint32_t planned_ = 0;
   uint32_t trainLimit_ = 0;
+  uint32_t onceAfter_ = 0;   // 0: iterations of doubling length
   bool skipFirst_ = false;
 };
 

@@ -161,7 +161,9 @@ void CpuRenderer::renderSamples(uint32_t count) {
     return;
   }
   for (uint32_t s = 0; s < count; ++s) {
-    cms_->setGathering(schedule_.gathers(spp_));
+    const bool gathering = schedule_.gathers(spp_);
+    cms_->setGathering(gathering);
+    counters_.gatheringSamples += gathering;
     renderPass(1);
     spp_ += 1;
     // Training iterations of doubling length (docs/estimator.md §7; cms/training_schedule.h): the

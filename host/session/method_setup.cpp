@@ -22,6 +22,7 @@ MethodSetup setUpMethod(const PreparedScene& prepared, const RenderOptions& o, c
   s.relativeWeighting = o.relativeWeighting;
   s.floatAtomics = o.floatAtomics;
   s.trainSpp = uint32_t(o.trainSpp);
+  s.trainOnce = o.trainOnce;
   m.lights = buildMethodLights(prepared, *row, uint32_t(o.maxClusters));
   m.estimator = method;
   if (cmsReducesToPlainMis(s.cms, m.lights.cms)) {

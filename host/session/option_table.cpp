@@ -206,6 +206,11 @@ std::vector<OptionRow> samplingRows() {
                             "learned by then",
                             [](D& d, const V& v) { d.render->trainSpp = int(v.integer); }),
                     std::to_string(r.trainSpp) + " = train through about the first half"),
+    choice("--training", "doubling|paper", "schedule", {"doubling", "paper"}, r.trainOnce ? "paper" : "doubling",
+           G::Sampling,
+           "learned/cv/cms: solve after iterations of doubling length (1, 2, 4, ... spp), or once, as the paper "
+           "does, after --train-spp samples (16 when not given)",
+           [](D& d, const V& v) { d.render->trainOnce = v.text == "paper"; }),
     choice("--float-atomics", "on|off", "setting", {"on", "off"}, onOff(r.floatAtomics), G::Sampling,
            "learned/cv/cms on Vulkan: add the statistics with float atomics (on, where the device has them) "
            "or compare-and-swap loops",

@@ -59,6 +59,7 @@ struct RenderOptions {
   bool relativeWeighting;        // --relative-weighting on|off: CMS statistics weighting
                                  // (docs/estimator.md §5)
   int trainSpp;                  // --train-spp N: no CMS solve after N spp (0 = no limit)
+  bool trainOnce;                // --training paper: one CMS solve after --train-spp (16) samples
   bool floatAtomics;             // --float-atomics on|off: CMS statistics with float atomics or CAS loops
   std::string assetRoot;         // --asset-root DIR: external scene files may lie under DIR (default: scene's folder)
   CameraOptions camera;          // --look-from, --look-at, --up, --fov

@@ -59,5 +59,28 @@ TEST(TrainingSchedule, HugePlansDoNotOverflow) {
   EXPECT_FALSE(s.gathers((1u << 31) - 1));   // its iteration would end past 2^32 samples
 }
 
+// --training paper (Hua et al. 2023): statistics from the first 16 samples, one solve after them;
+// with relative weighting the first sample only makes the pixel estimate (its solve reads nothing).
+TEST(TrainingSchedule, ThePapersScheduleSolvesOnceAfterItsTrainingSamples) {
+  TrainingSchedule s;
+  s.solveOnceAfter(kPaperTrainingSamples);
+  s.plan(128);
+  EXPECT_EQ(solvesUpTo(s, 128), (std::vector<uint32_t>{16}));
+  for (uint32_t i = 0; i < 16; ++i) EXPECT_TRUE(s.gathers(i)) << i;
+  for (uint32_t i = 16; i < 128; ++i) EXPECT_FALSE(s.gathers(i)) << i;
+
+  s.skipFirstSample(true);
+  EXPECT_EQ(solvesUpTo(s, 128), (std::vector<uint32_t>{1, 16}));
+  EXPECT_FALSE(s.gathers(0));
+  for (uint32_t i = 1; i < 16; ++i) EXPECT_TRUE(s.gathers(i)) << i;
+  EXPECT_FALSE(s.gathers(16));
+
+  s.plan(16);   // no sample would use the solve: none happens, nothing is gathered
+  EXPECT_TRUE(solvesUpTo(s, 16).empty());
+  for (uint32_t i = 0; i < 16; ++i) EXPECT_FALSE(s.gathers(i)) << i;
+  s.plan(0);    // open-ended: the one solve happens
+  EXPECT_EQ(solvesUpTo(s, 200), (std::vector<uint32_t>{1, 16}));
+}
+
 }  // namespace
 }  // namespace mixtrace
