@@ -2,6 +2,8 @@
 """The benchmark suite: what each method's accuracy costs in time, on every benchmark scene.
 
     python3 benchmarks/suite.py [--quick] [--out DIR] [--binary build/mixtrace] [--scenes a.gltf,b.gltf]
+    python3 benchmarks/suite.py --paper [--quick] [--scenes VeachMIS,RGBSofa]   # the paper's table
+
 
 For each scene and each method (pt-uniform, pt-power, learned, cv, cms) it renders at equal
 samples per pixel and at equal time (every method gets pt-uniform's render time) against a
@@ -17,6 +19,11 @@ Everything is written to DIR (default benchmarks/results): report.md (tables), r
 numbers), *.png (charts). --quick runs a tiny version (2 scenes, 32x24, a few spp, one value
 per knob) in seconds, for CI: it checks that every method runs and every output is produced,
 not speed. Exit status 1 when a render or an output is missing.
+
+--paper runs the paper's protocol on its own scenes (converted under scenes/paper/, see
+bench/paper.py): every method, the learning ones with our training and with the paper's, at equal
+samples and equal time, with the published numbers beside ours, into DIR (default
+benchmarks/results/paper).
 """
 import argparse
 import json
@@ -28,7 +35,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench import plots, report  # noqa: E402
+from bench import paper, plots, report  # noqa: E402
 from bench.mixtrace import Mixtrace  # noqa: E402
 from bench.references import reference  # noqa: E402
 
@@ -54,6 +61,15 @@ CONFIGS = {
                   scenes=["veach_mis.gltf", "cornell_box.gltf"], knob_scenes=["veach_mis.gltf"],
                   knobs={"cells": [8, 16], "max-clusters": [2, 16], "train-spp": [1, 0],
                          "relative-weighting": ["on", "off"], "float-atomics": ["on", "off"], "max-depth": [2, 3]}),
+}
+
+# The paper's protocol (docs/estimator.md section 8) at 320x240, so that it runs on lavapipe in
+# reasonable time (--width 640 --height 480 where time allows: the paper's size).
+PAPER_CONFIGS = {
+    "full": dict(width=320, height=240, max_depth=5, spp=128, ref_spp=4096, seeds=1,
+                 scenes=["VeachMIS", "RGBSofa", "Bathroom", "ModernHall", "DiningRoom2"]),
+    # Enough samples that the paper's one solve (after 16) happens and serves.
+    "quick": dict(width=32, height=24, max_depth=3, spp=24, ref_spp=64, seeds=1, scenes=["VeachMIS"]),
 }
 
 KNOB_HELP = {
@@ -246,6 +262,35 @@ def check_outputs(out, results):
     return missing
 
 
+def run_paper(args):
+    cfg = dict(PAPER_CONFIGS["quick" if args.quick else "full"])
+    if args.scenes:
+        cfg["scenes"] = args.scenes.split(",")
+    for key in ("width", "height"):
+        if getattr(args, key):
+            cfg[key] = getattr(args, key)
+    args.out = args.out or (tempfile.mkdtemp(prefix="mixtrace-paper-quick-") if args.quick
+                            else os.path.join(ROOT, "benchmarks", "results", "paper"))
+    os.makedirs(args.out, exist_ok=True)
+    suite = Suite(args, cfg)
+    start = time.time()
+    scenes, notes = paper.run(suite, cfg, cfg["scenes"])
+    results = {"config": cfg, "scenes": scenes, "notes": notes, "machine": machine(suite.mx),
+               "command": " ".join(["python3", "benchmarks/suite.py"] + sys.argv[1:]),
+               "minutes": (time.time() - start) / 60.0}
+    with open(os.path.join(args.out, "results.json"), "w") as f:
+        json.dump(results, f, indent=1)
+    m = results["machine"]
+    with open(os.path.join(args.out, "report.md"), "w") as f:
+        f.write(f"Measured on {m['cpu']} ({m['cores']} cores), Vulkan device {m['device']}, {m['os']}; "
+                f"{m['renderer']}. Command: `{results['command']}` ({results['minutes']:.0f} min).\n\n")
+        f.write(paper.markdown(results, cfg) + "\n")
+    for note in notes:
+        print(f"benchmark: {note}", file=sys.stderr)
+    print(f"benchmark: wrote {args.out}/report.md ({results['minutes']:.1f} min)", file=sys.stderr)
+    return 0 if scenes else 1
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="tiny and fast: checks that everything runs (CI)")
@@ -254,6 +299,9 @@ def main():
     ap.add_argument("--cache", default=os.path.join(ROOT, "benchmarks", "cache"), help="reference cache folder")
     ap.add_argument("--scenes", help="comma-separated scene files under scenes/ (default: the suite's)")
     ap.add_argument("--no-knobs", action="store_true", help="skip the knob sweeps")
+    ap.add_argument("--paper", action="store_true", help="the paper's table on its converted scenes (bench/paper.py)")
+    ap.add_argument("--width", type=int, help="--paper: image width (default 320)")
+    ap.add_argument("--height", type=int, help="--paper: image height (default 240)")
     ap.add_argument("--report-only", action="store_true",
                     help="rewrite OUT/report.md from OUT/results.json without rendering (after a change of format)")
     args = ap.parse_args()
@@ -264,6 +312,8 @@ def main():
         with open(os.path.join(out, "report.md"), "w") as f:
             f.write(markdown(results))
         return 0
+    if args.paper:
+        return run_paper(args)
     cfg = dict(CONFIGS["quick" if args.quick else "full"])
     if args.scenes:
         cfg["scenes"] = args.scenes.split(",")
