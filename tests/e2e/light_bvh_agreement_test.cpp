@@ -1,6 +1,7 @@
 // pt-bvh (lights chosen by the light BVH at each shading point) is unbiased, so its image must
 // agree within noise with pt-uniform's, on both backends, on the scenes where the selections differ
-// most: veach_mis (lights of very different sizes and powers) and many_lights. A selection pmf
+// most: veach_mis (lights of very different sizes and powers) and many_lights; and punctual, whose
+// directional light the BVH leaves out and picks with a fixed probability. A selection pmf
 // that differs from the pmf the BSDF sample's MIS weight evaluates (a wrong point or normal kept
 // in the path state, a bit-trail walked wrongly) or a light that the BVH's bounds wrongly cut off
 // shows up as a difference (mixtrace compare's per-pixel z-test and image means).
@@ -28,7 +29,7 @@ void PrintTo(const Case& c, std::ostream* os) { *os << c.scene << " " << c.backe
 
 std::vector<Case> cases() {
   std::vector<Case> all;
-  for (const char* scene : {"veach_mis", "many_lights"})
+  for (const char* scene : {"veach_mis", "many_lights", "punctual"})
     for (const char* backend : {"vulkan", "cpu"}) all.push_back({scene, backend});
   return all;
 }
