@@ -1,10 +1,13 @@
 #include "cms/method_lights.h"
 
+#include "scene/light_bvh.h"
+
 namespace mixtrace {
 
 MethodLights buildMethodLights(const PreparedScene& scene, const MethodInfo& method, uint32_t maxClusters) {
   MethodLights m;
   m.selection = buildLightSelection(scene.lights, method.selection);
+  if (method.selection == LightSelection::Bvh) m.bvh = buildLightBvh(scene);
   if (method.clusters) m.cms = setUpClusters(scene, m.selection, maxClusters, method.selection);
   return m;
 }

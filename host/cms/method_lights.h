@@ -17,6 +17,7 @@ namespace mixtrace {
 struct MethodLights {
   std::vector<shared::LightSelectionGpu> selection;   // per light of the prepared scene
   CmsScene cms;                                        // the light clusters, for methods with clusters
+  std::vector<shared::LightBvhNodeGpu> bvh;            // the light BVH (LightSelection::Bvh), else empty
 };
 
 // The tables of `method` on `scene`: the row's light selection and, where the row has clusters,

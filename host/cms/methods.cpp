@@ -14,6 +14,7 @@ const std::vector<MethodInfo>& methodTable() {
       {"cv", "control variate per cell, selection kept fixed", LightSelection::Uniform, true, false, true, '4'},
       {"cms", "control variate and learned selection (Hua et al. 2023)", LightSelection::Power, true, true, true,
        '5'},
+      {"pt-bvh", "MIS path tracer, light picked by a light BVH", LightSelection::Bvh, false, false, false, '6'},
   };
   return table;
 }

@@ -18,6 +18,7 @@ namespace mixtrace {
 struct CpuKernelContext {
   const PreparedScene* scene = nullptr;
   const std::vector<shared::LightSelectionGpu>* lightSelection = nullptr;   // the method's, per light
+  const std::vector<shared::LightBvhNodeGpu>* lightBvh = nullptr;   // the method's light BVH (empty: none)
   CpuCmsCells* cms = nullptr;              // the CMS methods' cells; null for the pt-* methods
   const glm::vec3* filmMean = nullptr;     // the running means, per pixel (pixel estimate only)
 };
@@ -29,6 +30,13 @@ inline thread_local const CpuKernelContext* tBound = nullptr;
 
 // The context bound on the calling thread; only valid inside a CpuKernelBinding.
 inline const CpuKernelContext& boundCpuKernel() { return *cpu_kernel_detail::tBound; }
+
+// The bound context's light BVH; empty (the table's selection) where the context names none.
+inline const std::vector<shared::LightBvhNodeGpu>& boundLightBvh() {
+  static const std::vector<shared::LightBvhNodeGpu> none;
+  const auto* bvh = boundCpuKernel().lightBvh;
+  return bvh ? *bvh : none;
+}
 
 // Binds `context` on the calling thread for this object's lifetime (restoring what was bound
 // before, so bindings nest). The context must outlive the binding.

@@ -26,6 +26,7 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
   using namespace shared;
   vec3 radiance(0.0f), throughput(1.0f);
   float previousBsdfPdf = 0.0f;  // 0: camera ray, whose emitter hits take no MIS weight
+  vec3 previousNormal(0.0f);     // the geometric normal at `origin` (the light BVH's pmf reads it)
   for (uint32_t depth = 1; depth <= maxDepth; ++depth) {
     ++counters.extensionRays;
     HitRecord hit = traceClosest(origin, direction, kFloatMax);
@@ -36,7 +37,7 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
       vec3 le = emittedRadiance(hit.triangle, hit.u, hit.v, -direction);
       float weight = 1.0f;
       if (previousBsdfPdf > 0.0f) {
-        float lightPdf = areaLightPdf(hit.triangle, origin, sh.position);
+        float lightPdf = areaLightPdfAt(hit.triangle, origin, previousNormal, sh.position);
         weight = previousBsdfPdf / (previousBsdfPdf + lightPdf);
       }
       radiance += throughput * le * weight;
@@ -56,7 +57,8 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
     float uPointY = rngNextFloat(rng);
     vec2 uPoint(uPointX, uPointY);
     LightSample ls;
-    if (lightCount > 0 && sampleLight(sh.position, lightCount, uLight, uEmitter, uPoint, ls) &&
+    // Chosen at the rays' origin `next` and the geometric normal, as the MIS weight above has them.
+    if (lightCount > 0 && sampleLightAt(sh.position, next, sh.geometricNormal, lightCount, uLight, uEmitter, uPoint, ls) &&
         dot(ls.direction, sh.geometricNormal) > 0.0f) {
       vec3 wi = toLocal(frame, ls.direction);
       vec3 f = bsdfEval(bsdf, wo, wi) * std::abs(wi.z);
@@ -84,6 +86,7 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
     if (isBlack(weight)) break;
     throughput *= weight;
     previousBsdfPdf = pdf;
+    previousNormal = sh.geometricNormal;
     origin = next;
     direction = wiWorld;
   }
@@ -107,6 +110,7 @@ CpuRenderer::CpuRenderer(const PreparedScene& scene, const MethodLights& lights,
     cms_ = std::make_unique<CpuCmsCells>(lights.cms, scene.scene.bounds, settings, uint32_t(film_.size()));
   kernel_.scene = &scene_;
   kernel_.lightSelection = &lights_.selection;
+  kernel_.lightBvh = &lights_.bvh;
   kernel_.cms = cms_.get();
 }
 

@@ -29,7 +29,7 @@ std::vector<shared::LightSelectionGpu> buildLightSelection(const LightSet& set, 
     lights[i].clusterPmf = 1.0f;
   }
   std::vector<double> weights;
-  if (selection == LightSelection::Power) weights = set.power;
+  if (selection == LightSelection::Power || selection == LightSelection::Bvh) weights = set.power;
   else weights.assign(set.lights.size(), 1.0);
   setSelection(lights, weights);
   return lights;

@@ -10,7 +10,9 @@
 
 namespace mixtrace {
 
-enum class LightSelection { Uniform, Power };
+// Bvh: by the light BVH at the shading point (scene/light_bvh.h); its method's table below holds
+// the power distribution, which no part of the BVH path reads.
+enum class LightSelection { Uniform, Power, Bvh };
 
 // One entry per light of `lights`: the selection pmf and its inclusive CDF (the last entry exactly
 // 1), uniform where every weight is 0. Every light is its own cluster with in-cluster pmf 1: what

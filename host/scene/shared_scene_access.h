@@ -33,6 +33,12 @@
 #define LIGHT_SELECT_CDF(i) (SHARED_LIGHT_SELECTION[i].cdf)
 #define LIGHT_CLUSTER(light) (SHARED_LIGHT_SELECTION[light].cluster)
 #define LIGHT_CLUSTER_PMF(light) (SHARED_LIGHT_SELECTION[light].clusterPmf)
+// The method's light BVH (optional: SHARED_LIGHT_BVH names a `const
+// std::vector<LightBvhNodeGpu>&`, empty where the method picks lights by the table).
+#ifdef SHARED_LIGHT_BVH
+#define LIGHT_BVH(i) (SHARED_LIGHT_BVH[i])
+#define LIGHT_SELECT_BVH (!SHARED_LIGHT_BVH.empty())
+#endif
 #define HAS_TEXTURES true
 #define HAS_AREA_LIGHTS true
 #define HAS_PUNCTUAL_LIGHTS true

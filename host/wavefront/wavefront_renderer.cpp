@@ -66,6 +66,9 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   }
   // The method's light selection, beside the scene's lights (shared/method_buffers.h).
   buffers_.add(shared::BINDING_LIGHT_SELECTION, makeBuffer(ctx, lights.selection, "light selection"));
+  lightBvh_ = !lights.bvh.empty();
+  buffers_.add(shared::BINDING_LIGHT_BVH,
+               makeBuffer(ctx, lightBvh_ ? lights.bvh : std::vector<shared::LightBvhNodeGpu>(1), "light BVH"));
   buffers_.add(shared::BINDING_CLUSTER_DEFAULTS,
                makeBuffer(ctx, useCms ? cms->clusters.defaultSelection : std::vector<float>{1.0f}, "cluster defaults"));
   buffers_.add(shared::BINDING_CLUSTERS,
@@ -134,6 +137,7 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   vertex.gridOrigin = gridOrigin_;
   vertex.gridInvCellSize = gridInvCellSize_;
   vertex.gatherStatistics = gathering ? 1u : 0u;
+  vertex.lightBvh = lightBvh_ ? 1u : 0u;
   for (uint32_t depth = 1; depth <= settings_.maxDepth; ++depth) {
     vertex.depth = depth;
     vertex.queueIn = (depth - 1) & 1u;

@@ -83,6 +83,7 @@ class WavefrontRenderer : public Renderer {
   VulkanContext& ctx_;
   RenderSettings settings_;
   uint32_t lightCount_;
+  bool lightBvh_ = false;   // the method picks lights by its light BVH (pt-bvh)
   uint32_t pixelCount_;
   uint32_t pathCount_;
   uint32_t spp_ = 0;

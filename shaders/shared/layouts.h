@@ -108,6 +108,36 @@ struct LightSelectionGpu {
   float clusterPmf;    // fixed probability of the light inside its cluster
 };
 
+// One entry of the light BVH (host/scene/light_bvh.h builds it, shared/light_bvh.h descends it):
+// node 0 is the header, node 1 + i is light i's entry (a leaf, or a directional light, which has
+// no position and is chosen apart), then the directional lights' list, then the interior nodes.
+//   header:      first = root (kNoHit: no light in the tree), second = start of the directional
+//                list, third = its length, power = probability of picking a directional light
+//   leaf:        first = the light, second = its bit-trail from the root (bit d set: the second
+//                child at depth d), third = the trail's length
+//   interior:    first, second = the children
+//   directional: first = the light, power = its selection pmf (entry 1 + i), or its inclusive CDF
+//                inside the directional list (a list entry)
+// Leaves and interior nodes bound their lights: the box, the emitted power (luminance) and the
+// orientation cone (Conty Estevez & Kulla 2018): the normals lie within theta_o of `axis`, and each
+// emits within theta_e of its normal.
+const uint kLightBvhHeader = 0u;
+const uint kLightBvhInterior = 1u;
+const uint kLightBvhLeaf = 2u;
+const uint kLightBvhDirectional = 3u;
+struct LightBvhNodeGpu {
+  vec3 boundsMin;
+  float power;
+  vec3 boundsMax;
+  float cosThetaO;
+  vec3 axis;
+  float cosThetaE;
+  uint kind;
+  uint first;
+  uint second;
+  uint third;
+};
+
 // An emissive triangle of an area light, chosen inside its light by area * radiance.
 struct EmitterGpu {
   uint triangle;       // BVH-order triangle index

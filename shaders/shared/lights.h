@@ -14,6 +14,9 @@
 #include "shared/ray_offset.h"
 #include "shared/sampling.h"
 #include "shared/texture.h"
+#ifdef LIGHT_BVH
+#include "shared/light_bvh.h"
+#endif
 SHARED_BEGIN_WITH_BUFFERS
 
 struct LightSample {
@@ -122,6 +125,28 @@ SHARED_FN float areaLightPointPdf(uint tri, vec3 from, vec3 lightPoint) {
   return EMITTER(uint(e)).pmf * triangleSolidAnglePdf(TRIANGLE(tri), lightPoint - from);
 }
 
+// The method's selection at a point with a normal: the light BVH's (method pt-bvh, where the
+// includer defines LIGHT_BVH(i) and LIGHT_SELECT_BVH is true) or the table's, which ignores the
+// point. pmf is the light's probability; 0 where no light can be chosen (the BVH: none reaches).
+SHARED_FN uint selectLightAt(vec3 p, vec3 n, float u, uint lightCount, OUT(float) pmf) {
+#ifdef LIGHT_BVH
+  if (LIGHT_SELECT_BVH) {
+    uint light = selectLightBvh(p, n, u, pmf);
+    return pmf > 0.0f ? light : 0u;
+  }
+#endif
+  uint light = selectLight(u, lightCount);
+  pmf = lightSelectPmf(light);
+  return light;
+}
+
+SHARED_FN float lightSelectPmfAt(vec3 p, vec3 n, uint light) {
+#ifdef LIGHT_BVH
+  if (LIGHT_SELECT_BVH) return lightBvhPmf(p, n, light);
+#endif
+  return lightSelectPmf(light);
+}
+
 // The light an emitting triangle belongs to (only for triangles with an emitter).
 SHARED_FN uint lightOfTriangle(uint tri) { return EMITTER(uint(TRIANGLE_SHADING(tri).emitter)).light; }
 
@@ -129,6 +154,13 @@ SHARED_FN uint lightOfTriangle(uint tri) { return EMITTER(uint(TRIANGLE_SHADING(
 SHARED_FN float areaLightPdf(uint tri, vec3 from, vec3 lightPoint) {
   float pointPdf = areaLightPointPdf(tri, from, lightPoint);
   return pointPdf > 0.0f ? lightSelectPmf(lightOfTriangle(tri)) * pointPdf : 0.0f;
+}
+
+// areaLightPdf for a selection that depends on the point: `from` and `fromNormal` are the point and
+// normal the light sample's selection used (sampleLightAt's selectFrom, selectNormal).
+SHARED_FN float areaLightPdfAt(uint tri, vec3 from, vec3 fromNormal, vec3 lightPoint) {
+  float pointPdf = areaLightPointPdf(tri, from, lightPoint);
+  return pointPdf > 0.0f ? lightSelectPmfAt(from, fromNormal, lightOfTriangle(tri)) * pointPdf : 0.0f;
 }
 
 // glTF's recommended spot falloff: smooth between the outer and inner cone, squared.
@@ -202,6 +234,18 @@ SHARED_FN bool sampleLight(vec3 p, uint lightCount, float uLight, float uEmitter
   bool carries = sampleLightPoint(p, light, uEmitter, uPoint, s);
   s.pdf *= lightSelectPmf(light);
   return carries;
+}
+
+// sampleLight with the light chosen at (selectFrom, selectNormal), the point and normal at which
+// the MIS weight of a BSDF sample from the same vertex later evaluates lightSelectPmfAt. Returns
+// false with pdf 0 where no light can be chosen.
+SHARED_FN bool sampleLightAt(vec3 p, vec3 selectFrom, vec3 selectNormal, uint lightCount, float uLight, float uEmitter,
+                             vec2 uPoint, OUT(LightSample) s) {
+  float pmf;
+  uint light = selectLightAt(selectFrom, selectNormal, uLight, lightCount, pmf);
+  bool carries = sampleLightPoint(p, light, uEmitter, uPoint, s);
+  s.pdf *= pmf;
+  return carries && pmf > 0.0f;
 }
 
 // Shadow rays stop this fraction of their length short of the light point (pbrt-v4's

@@ -11,7 +11,11 @@
 #define BUFFER_LIGHT_SELECTION(X) \
   X(LIGHT_SELECTION, lightSelection, 31, READ_ONLY, LightSelectionGpu, UPLOADED, "light selection")
 
-#define METHOD_BUFFERS(X) BUFFER_LIGHT_SELECTION(X)
+// LightBvhNodeGpu: the light BVH of method pt-bvh (scene/light_bvh.h); one placeholder node for the
+// other methods, so that the binding is valid.
+#define BUFFER_LIGHT_BVH(X) X(LIGHT_BVH, lightBvh, 32, READ_ONLY, LightBvhNodeGpu, UPLOADED, "light BVH")
+
+#define METHOD_BUFFERS(X) BUFFER_LIGHT_SELECTION(X) BUFFER_LIGHT_BVH(X)
 
 SHARED_BEGIN
 METHOD_BUFFERS(BUFFER_BINDING_CONSTANT)

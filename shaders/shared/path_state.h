@@ -14,6 +14,9 @@
 #define BUFFER_RADIANCE(X) X(RADIANCE, radiance, 12, READ_WRITE, vec3, PER_PATH, "path state (radiance)")
 #define BUFFER_RNG(X) X(RNG, rngState, 13, READ_WRITE, uint, PER_PATH, "path state (random numbers)")
 #define BUFFER_MIS_PDF(X) X(MIS_PDF, misPdf, 14, READ_WRITE, float, PER_PATH, "path state (MIS pdfs)")
+// The geometric normal of the vertex a BSDF sample left (method pt-bvh): the light BVH's pmf of an
+// emitter it hits depends on the vertex's point (rayOrigin) and normal.
+#define BUFFER_MIS_NORMAL(X) X(MIS_NORMAL, misNormal, 33, READ_WRITE, vec3, PER_PATH, "path state (MIS normals)")
 #define BUFFER_HITS(X) X(HITS, hits, 15, READ_WRITE, HitRecord, PER_PATH, "path state (hits)")
 // Queues: the extension rays' path indices in ping-pong halves of pathCount entries each, the
 // shadow rays, and the counters with the indirect dispatch arguments.
@@ -27,7 +30,7 @@
 #define PATH_STATE_BUFFERS(X)                                                                             \
   BUFFER_RAY_ORIGIN(X) BUFFER_RAY_DIRECTION(X) BUFFER_THROUGHPUT(X) BUFFER_RADIANCE(X) BUFFER_RNG(X)     \
   BUFFER_MIS_PDF(X) BUFFER_HITS(X) BUFFER_RAY_QUEUE(X) BUFFER_SHADOW_QUEUE(X) BUFFER_QUEUE_STATE(X) \
-  BUFFER_FILM(X)
+  BUFFER_FILM(X) BUFFER_MIS_NORMAL(X)
 
 SHARED_BEGIN
 PATH_STATE_BUFFERS(BUFFER_BINDING_CONSTANT)

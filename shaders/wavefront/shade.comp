@@ -15,6 +15,9 @@
 #define PASS_CONSTANTS VertexConstants
 #include "gpu/cms_buffers.glsl"
 #include "gpu/buffers.glsl"
+// pt-bvh picks lights by the method's light BVH (shared/light_bvh.h, through shared/lights.h).
+#define LIGHT_BVH(i) lightBvh[i]
+#define LIGHT_SELECT_BVH (pc.lightBvh != 0u)
 #include "gpu/cms_statistics.glsl"
 #include "shared/bsdf.h"
 #include "shared/cms_sampling.h"
@@ -63,7 +66,7 @@ void addEmission(uint path, HitRecord hit, SurfaceHit sh, vec3 le, vec3 beta, fl
     if (CMS_SELECTION) {
       w = cmsWeight;
     } else {
-      float lightPdf = areaLightPdf(hit.triangle, rayOrigin[path], sh.position);
+      float lightPdf = areaLightPdfAt(hit.triangle, rayOrigin[path], misNormal[path], sh.position);
       w = prevPdfB / (prevPdfB + lightPdf);
     }
   }
@@ -105,7 +108,9 @@ void queueLightSample(Vertex v, INOUT(uint) rng) {
   if (CMS_SELECTION) {
     carries = sampleClusterLight(v.cell, L, v.sh.position, uLight, uEmitter, uPoint, rng, k, pk, ls);
   } else {
-    carries = sampleLight(v.sh.position, pc.lightCount, uLight, uEmitter, uPoint, ls);
+    // Chosen at the rays' origin and the geometric normal: what addEmission's MIS weight of this
+    // vertex's BSDF sample has (rayOrigin, misNormal).
+    carries = sampleLightAt(v.sh.position, v.origin, v.sh.geometricNormal, pc.lightCount, uLight, uEmitter, uPoint, ls);
   }
   bool cmsTerms = CMS_SELECTION && v.cell != kNoCell;
   if (!(ls.pdf > 0.0 || cmsTerms)) return;
@@ -169,6 +174,7 @@ void sampleBsdf(Vertex v, INOUT(uint) rng) {
   misPdf[v.path] = pdf;
   rayOrigin[v.path] = v.origin;
   rayDirection[v.path] = wiWorld;
+  if (LIGHT_SELECT_BVH) misNormal[v.path] = v.sh.geometricNormal;
   if (CMS_SELECTION) {
     CvPathState state;
     state.throughput = v.beta;

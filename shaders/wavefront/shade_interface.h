@@ -15,7 +15,7 @@
 
 #define SHADE_BUFFERS(X)                                                                                \
   BUFFER_TRIANGLES(X) BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) BUFFER_TEXTURES(X) BUFFER_TEXELS(X) \
-  BUFFER_LIGHTS(X) BUFFER_EMITTERS(X) BUFFER_LIGHT_SELECTION(X)                                         \
+  BUFFER_LIGHTS(X) BUFFER_EMITTERS(X) BUFFER_LIGHT_SELECTION(X) BUFFER_LIGHT_BVH(X) BUFFER_MIS_NORMAL(X) \
   BUFFER_RAY_ORIGIN(X) BUFFER_RAY_DIRECTION(X) BUFFER_THROUGHPUT(X) BUFFER_RADIANCE(X) BUFFER_RNG(X)    \
   BUFFER_MIS_PDF(X) BUFFER_HITS(X) BUFFER_RAY_QUEUE(X) BUFFER_SHADOW_QUEUE(X) BUFFER_QUEUE_STATE(X)     \
   BUFFER_CELL_STATS(X) BUFFER_CELL_SAMPLES(X) BUFFER_CELL_SOLUTION(X) BUFFER_CLUSTER_DEFAULTS(X)        \
@@ -35,6 +35,7 @@ struct VertexConstants {
   vec3 gridOrigin;        // CMS: the cell grid's origin (scene bounds minimum)
   float gridInvCellSize;
   uint gatherStatistics;  // CMS: 1 when a later solve reads this sample pass's statistics
+  uint lightBvh;          // 1: lights chosen by the light BVH (pt-bvh), else by the selection table
 };
 SHARED_END
 #endif

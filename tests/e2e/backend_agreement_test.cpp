@@ -29,7 +29,7 @@ void PrintTo(const Case& c, std::ostream* os) { *os << sceneStem(c.scene) << " "
 std::vector<Case> allCases() {
   std::vector<Case> cases;
   for (const std::string& s : shippedScenes())
-    for (const char* m : {"pt-uniform", "pt-power"}) cases.push_back({s, m});
+    for (const char* m : {"pt-uniform", "pt-power", "pt-bvh"}) cases.push_back({s, m});
   return cases;
 }
 

@@ -82,6 +82,7 @@ TEST(Methods, CmsSetUpTakesEachRowsFlags) {
       {"learned", LightSelection::Power, true, true, false},
       {"cv", LightSelection::Uniform, true, false, true},
       {"cms", LightSelection::Power, true, true, true},
+      {"pt-bvh", LightSelection::Bvh, false, false, false},
   };
   ASSERT_EQ(methodTable().size(), std::size(expected));
   for (const Expected& e : expected) {
