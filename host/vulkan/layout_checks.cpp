@@ -19,6 +19,7 @@
 #include "shared/display.h"
 #include "shared/layouts.h"
 #include "tests/cell_lookup_interface.h"
+#include "tests/pair_lookup_interface.h"
 #include "tests/trace_rays_interface.h"
 #include "viewer/display_interface.h"
 #include "wavefront/accumulate_interface.h"
@@ -69,6 +70,7 @@ PUSH_CONSTANTS_FIT(SolveParams)
 PUSH_CONSTANTS_FIT(DisplayConstants)
 PUSH_CONSTANTS_FIT(TraceRaysConstants)
 PUSH_CONSTANTS_FIT(CellLookupConstants)
+PUSH_CONSTANTS_FIT(PairLookupConstants)
 #undef PUSH_CONSTANTS_FIT
 
 // Binding numbers: one space for every buffer table (shaders/shared/buffer_table.h), so no two
@@ -76,7 +78,7 @@ PUSH_CONSTANTS_FIT(CellLookupConstants)
 #define ROW_BINDING(ID, name, binding, access, Type, extent, label) binding,
 constexpr uint32_t kRowBindings[] = {SCENE_BUFFERS(ROW_BINDING) PATH_STATE_BUFFERS(ROW_BINDING)
                                          CMS_STATE_BUFFERS(ROW_BINDING) METHOD_BUFFERS(ROW_BINDING)
-                                         BUFFER_WINDOW(ROW_BINDING)};
+                                         BUFFER_WINDOW(ROW_BINDING) PAIR_LOOKUP_BUFFERS(ROW_BINDING)};
 #undef ROW_BINDING
 constexpr bool bindingsDistinct() {
   for (size_t i = 0; i < std::size(kRowBindings); ++i)

@@ -22,6 +22,7 @@
 #include "shared/layouts.h"
 #include "support/spirv_reader.h"
 #include "tests/cell_lookup_interface.h"
+#include "tests/pair_lookup_interface.h"
 #include "tests/trace_rays_interface.h"
 #include "viewer/display_interface.h"
 #include "vulkan/compute_pass.h"
@@ -161,6 +162,7 @@ std::map<std::string, Interface> interfaces() {
       {"display", INTERFACE_WITH_UNREAD(DISPLAY_BUFFERS, DisplayConstants, DISPLAY_UNREAD_BUFFERS)},
       {"trace_rays", INTERFACE(TRACE_RAYS_BUFFERS, TraceRaysConstants)},
       {"cell_lookup", INTERFACE(CELL_LOOKUP_BUFFERS, CellLookupConstants)},
+      {"pair_lookup", INTERFACE(PAIR_LOOKUP_BUFFERS, PairLookupConstants)},
   };
 #undef INTERFACE
 #undef INTERFACE_WITH_UNREAD

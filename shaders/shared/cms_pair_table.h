@@ -1,0 +1,72 @@
+// The sparse statistics of the control variate (docs/estimator.md; issue 13):
+// one technique per emissive triangle, so a cell's system has thousands of unknowns, of which only
+// the (cell, technique) pairs that received samples have non-zero A_tt, A_tB, b_t. This table
+// gives each such pair a slot, found or claimed by hashing the pair; the statistics live in
+// arrays indexed by that slot (shared/cms_pair_layout.h: the layout, the memory per slot, the
+// largest table).
+//
+// Open addressing, triangular probing (slot_i = h + i(i+1)/2): for a power-of-two capacity it
+// visits every slot once in `capacity` probes, and it clusters less than linear probing at the
+// loads a table of many techniques runs at. A slot is claimed with a 64-bit compare-and-swap, so
+// any number of invocations may insert the same or different pairs at once: each distinct pair
+// gets exactly one slot. Slots are never freed or overwritten; the host clears the whole key
+// array (fill with 0) when the statistics restart.
+//
+// When no free slot is found within kPairProbes (a full or crowded table), the pair gets
+// kNoPairSlot. The caller counts that and treats the sample under a coarser technique (a merged
+// group of triangles, or no control variate term for it): any granularity keeps the estimator
+// unbiased, so a full table costs variance, never correctness.
+//
+// The includer defines PAIR_KEY_LOAD(slot) -> the uint64 key in that slot, and
+// PAIR_KEY_CAS(slot, expected, desired) -> the previous key (an atomic compare-and-swap on the key
+// array): GLSL binds them to a buffer and atomicCompSwap, C++ to std::atomic<uint64_t>.
+#ifndef MIXTRACE_SHARED_CMS_PAIR_TABLE_H
+#define MIXTRACE_SHARED_CMS_PAIR_TABLE_H
+#include "shared/cms_layouts.h"
+#include "shared/cms_pair_layout.h"
+#include "shared/dialect.h"
+SHARED_BEGIN_WITH_BUFFERS
+
+// The slot of (cell, technique) in a table of `capacity` slots (a power of two): found, or claimed
+// when the pair is new; kNoPairSlot when the probe sequence holds no free slot or cell is kNoCell.
+SHARED_FN uint findOrInsertPair(uint capacity, uint cell, uint technique) {
+  if (cell == kNoCell) return kNoPairSlot;
+  uint64_t key = pairKey(cell, technique);
+  uint mask = capacity - 1u;
+  uint slot = hashPairKey(key) & mask;
+  uint probes = pairProbeBound(capacity);
+  for (uint i = 0u; i < probes; ++i) {
+    uint64_t seen = PAIR_KEY_LOAD(slot);
+    if (seen == key) return slot;
+    if (seen == uint64_t(0)) {
+      // Another invocation may claim this slot between the load and the swap: then the swap
+      // returns its key, which is ours (the same pair, raced) or another's (probe on).
+      uint64_t previous = PAIR_KEY_CAS(slot, uint64_t(0), key);
+      if (previous == uint64_t(0) || previous == key) return slot;
+    }
+    slot = (slot + i + 1u) & mask;
+  }
+  return kNoPairSlot;
+}
+
+// The slot of (cell, technique) when the pair is in the table, else kNoPairSlot; never inserts
+// (the solve pass, and vertices that only read coefficients). A pair sits at the first slot of its
+// probe sequence that was empty or its own when it was inserted, and slots are never freed, so
+// reaching an empty slot proves the pair absent.
+SHARED_FN uint findPair(uint capacity, uint cell, uint technique) {
+  if (cell == kNoCell) return kNoPairSlot;
+  uint64_t key = pairKey(cell, technique);
+  uint mask = capacity - 1u;
+  uint slot = hashPairKey(key) & mask;
+  uint probes = pairProbeBound(capacity);
+  for (uint i = 0u; i < probes; ++i) {
+    uint64_t seen = PAIR_KEY_LOAD(slot);
+    if (seen == key) return slot;
+    if (seen == uint64_t(0)) return kNoPairSlot;
+    slot = (slot + i + 1u) & mask;
+  }
+  return kNoPairSlot;
+}
+
+SHARED_END_WITH_BUFFERS
+#endif
