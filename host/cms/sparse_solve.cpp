@@ -102,10 +102,11 @@ SparseCellSolution solveSparseCell(const SparseCellStatistics& cell, const Spars
 
   if (!out.valid) {
     out.alpha.assign(n, glm::dvec3(0.0));
-    return out;
+  } else {
+    out.alphaB = alphaB;
+    out.alphaSum = alphaSum;
   }
-  out.alphaB = alphaB;
-  out.alphaSum = alphaSum;
+  // The map is checked whether or not the cell is valid, so that a caller's bug shows at once.
   if (clusters != nullptr && !clusters->clusterOf.empty()) {
     for (size_t i = 0; i < n; ++i) {
       const uint32_t t = cell.pairs[i].technique;

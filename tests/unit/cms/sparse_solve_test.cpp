@@ -491,8 +491,25 @@ TEST(SparseSolve, NanOrInfInTheBsdfRowDropsBOrTheCellNeverLeaksOut) {
 TEST(SparseSolve, ASumBeyondTheBoundInvalidatesTheCell) {
   SparseStatisticsTable table = randomTable(3, 10, 13);
   SparseCellStatistics cell = *table.cell(0);
-  cell.pairs[0].bT *= 1e40;   // alpha_t ~ 1e40: beyond float, beyond kSolveMaxAlphaSum
-  SparseCellSolution s = solveSparseCell(cell, SparseSolveParams{});
+  for (double k : {1e32, 1e40}) {   // alpha_t ~ k: within float but beyond kSolveMaxAlphaSum; beyond float
+    SparseCellStatistics big = cell;
+    big.pairs[0].bT *= k;
+    SparseCellSolution s = solveSparseCell(big, SparseSolveParams{});
+    EXPECT_FALSE(s.valid) << k;
+    expectAllZero(s);
+  }
+  // Two coefficients beyond float's range that cancel in the sum: the GPU cannot store them.
+  SparseCellStatistics cancel;
+  cancel.totals.samples = 1000;
+  for (double sign : {1.0, -1.0}) {
+    SparsePairStatistics p;
+    p.technique = cancel.pairs.size();
+    p.aTT = 1.0;
+    p.bT = Vec(sign * 1e39);
+    p.samples = 500;
+    cancel.pairs.push_back(p);
+  }
+  SparseCellSolution s = solveSparseCell(cancel, SparseSolveParams{});
   EXPECT_FALSE(s.valid);
   expectAllZero(s);
 }
@@ -529,6 +546,26 @@ TEST(SparseStatistics, AFullTableRefusesAndCountsNewPairsAndCells) {
   EXPECT_EQ(table.add(1, sample(0)), SparseAddResult::Added);
   EXPECT_EQ(table.add(0, sample(7)), SparseAddResult::Added);   // cell 0 restarted: 7 fits now
   EXPECT_EQ(table.entries(), 4u);
+}
+
+TEST(SparseStatistics, ARefusedPairStaysRefusedWhenAnotherCellFreesEntries) {
+  SparseStatisticsTable table(4);
+  SparseSample s;
+  s.pT = 1.0;
+  s.pB = 0.5;
+  s.f = Vec(1.0);
+  s.technique = 0;
+  table.add(0, s);   // cell 0 and (0, 0)
+  table.add(1, s);   // cell 1 and (1, 0): full
+  s.technique = 7;
+  EXPECT_EQ(table.add(0, s), SparseAddResult::PairRefused);
+  table.resetCell(1);   // two entries free
+  EXPECT_EQ(table.entries(), 2u);
+  EXPECT_EQ(table.add(0, s), SparseAddResult::PairRefused);   // (0, 7) would miss its first sample
+  EXPECT_EQ(table.refusedPairs(), 1u);
+  EXPECT_EQ(table.refusedPairSamples(), 2u);
+  s.technique = 8;
+  EXPECT_EQ(table.add(0, s), SparseAddResult::Added);   // a pair never refused may use the room
 }
 
 TEST(SparseSolve, TenThousandTechniquesInOneCellSolveFast) {
