@@ -10,8 +10,11 @@
 #include <random>
 #include <vector>
 
+#include "cms/reference_solve.h"
 #include "cms/sparse_solve.h"
 #include "cms/sparse_statistics.h"
+#include "shared/cms_layouts.h"
+#include "shared/cms_solve.h"
 
 namespace mixtrace {
 namespace {
@@ -194,6 +197,76 @@ TEST(SparseSolve, RecoversTheCoefficientsOfAnIntegrandInTheSpanOfTheDensities) {
   EXPECT_LE(maxAbs(s.alphaB - betaB), 1e-9);
   for (size_t i = 0; i < s.alpha.size(); ++i)
     EXPECT_LE(maxAbs(s.alpha[i] - beta[table.cell(3)->pairs[i].technique]), 1e-9);
+}
+
+// The rules are today's per-cluster solve's: with one pair per cluster, the sparse solve and the
+// double-precision reference (host/cms/reference_solve.cpp, a dense Cholesky with its own drop
+// logic) must agree on the same statistics, dropped techniques and invalid cells included.
+void expectAgreesWithTheClusterReference(const SparseCellStatistics& cell, const char* what, float ridge = 1e-3f,
+                                         bool expectB = false) {
+  const uint32_t L = uint32_t(cell.pairs.size());
+  std::vector<double> stats(shared::cellStatsStride(L), 0.0);
+  for (uint32_t k = 0; k < L; ++k) {
+    stats[shared::statsAkk(L, k)] = cell.pairs[k].aTT;
+    stats[shared::statsAkB(L, k)] = cell.pairs[k].aTB;
+    for (uint32_t c = 0; c < 3; ++c) stats[shared::statsBk(L, k, c)] = cell.pairs[k].bT[c];
+  }
+  stats[shared::statsABB(L)] = cell.totals.aBB;
+  for (uint32_t c = 0; c < 3; ++c) stats[shared::statsBB(L, c)] = cell.totals.bB[c];
+  shared::SolveParams params{};
+  params.clusterCount = L;
+  params.minSamples = 64;
+  params.flags = shared::kSolveControlVariate;
+  params.ridge = ridge;
+  params.defensive = 0.2f;
+  std::vector<float> defaults(L, 1.0f / L);
+  CellSolution ref = solveCellReference(stats.data(), uint32_t(cell.totals.samples), L, params, defaults.data());
+  SparseSolveParams sparseParams;
+  sparseParams.ridge = double(params.ridge);
+  SparseCellSolution s = solveSparseCell(cell, sparseParams);
+  ASSERT_EQ(s.valid, ref.valid) << what;
+  EXPECT_EQ(s.bInSystem, bool(ref.inSystem[L])) << what;
+  double scale = maxAbs(ref.alphaB) + 1e-300;
+  for (uint32_t k = 0; k < L; ++k) {
+    EXPECT_EQ(s.inSystem[k], bool(ref.inSystem[k])) << what << " technique " << k;
+    scale = std::max(scale, maxAbs(ref.alpha[k]));
+  }
+  EXPECT_LE(maxAbs(s.alphaB - ref.alphaB), 1e-9 * scale) << what;
+  for (uint32_t k = 0; k < L; ++k) EXPECT_LE(maxAbs(s.alpha[k] - ref.alpha[k]), 1e-9 * scale) << what << " " << k;
+  EXPECT_LE(maxAbs(s.alphaSum - ref.alphaSum), 1e-9 * scale * (L + 1)) << what;
+  if (expectB) EXPECT_TRUE(s.bInSystem) << what;
+}
+
+TEST(SparseSolve, AgreesWithThePerClusterReferenceSolveOnTheSameStatistics) {
+  for (uint32_t T : {1u, 5u, 32u}) expectAgreesWithTheClusterReference(*randomTable(T, 10, 40 + T).cell(0), "random");
+  SparseCellStatistics base = *randomTable(6, 10, 50).cell(0);
+  SparseCellStatistics c = base;
+  c.pairs[2].aTT = c.pairs[2].aTB = 0.0;
+  c.pairs[2].bT = Vec(0.0);
+  expectAgreesWithTheClusterReference(c, "zero row");
+  c = base;
+  c.pairs[4].aTB = std::numeric_limits<double>::quiet_NaN();
+  expectAgreesWithTheClusterReference(c, "NaN row");
+  c = base;
+  c.totals.aBB = 0.0;
+  expectAgreesWithTheClusterReference(c, "no B");
+  c = base;
+  double schur = 0.0;
+  for (const auto& p : c.pairs) schur += p.aTB * p.aTB / p.aTT;
+  c.totals.aBB = schur;   // B a combination of the techniques: singular without the ridge
+  expectAgreesWithTheClusterReference(c, "singular");
+  expectAgreesWithTheClusterReference(c, "singular, no ridge", 0.0f);
+  // Scaled Schur pivots either side of kSolvePivotFloor (1e-5), without the ridge: 1e-4 keeps B.
+  c.totals.aBB = schur / (1.0 - 1e-4);
+  expectAgreesWithTheClusterReference(c, "pivot 1e-4", 0.0f, true);
+  c.totals.aBB = schur / (1.0 - 1e-6);
+  expectAgreesWithTheClusterReference(c, "pivot 1e-6", 0.0f);
+  c = base;
+  c.totals.samples = 63;
+  expectAgreesWithTheClusterReference(c, "too few samples");
+  c = base;
+  c.pairs[1].bT *= 1e32;
+  expectAgreesWithTheClusterReference(c, "sum beyond the bound");
 }
 
 // --- statistics increments, exactly as cms.md §4 writes them
