@@ -42,6 +42,7 @@ SparseAddResult SparseStatisticsTable::add(uint32_t cellId, const SparseSample& 
     if (entries_ >= capacity_ || refusedKeys_.count(k) != 0) {
       if (refusedKeys_.insert(k).second) refusedPairs_ += 1;
       refusedPairSamples_ += 1;
+      cell.refusedPairSamples += 1;
       addSampleTo(cell.totals, nullptr, sample);   // the cell keeps every sample (header comment)
       return SparseAddResult::PairRefused;
     }
@@ -53,6 +54,52 @@ SparseAddResult SparseStatisticsTable::add(uint32_t cellId, const SparseSample& 
   }
   addSampleTo(cell.totals, &cell.pairs[slot->second], sample);
   return SparseAddResult::Added;
+}
+
+void SparseStatisticsTable::merge(const SparseStatisticsTable& other) {
+  for (const auto& [cellId, from] : other.cells_) {
+    auto found = cells_.find(cellId);
+    if (found == cells_.end()) {
+      if (entries_ >= capacity_) {
+        refusedCellSamples_ += from.totals.samples;
+        continue;
+      }
+      found = cells_.emplace(cellId, SparseCellStatistics{}).first;
+      entries_ += 1;
+    }
+    SparseCellStatistics& cell = found->second;
+    cell.totals.aBB += from.totals.aBB;
+    cell.totals.bB += from.totals.bB;
+    cell.totals.samples += from.totals.samples;
+    cell.refusedPairSamples += from.refusedPairSamples;
+    refusedPairSamples_ += from.refusedPairSamples;
+    for (const SparsePairStatistics& pair : from.pairs) {
+      const uint64_t k = key(cellId, pair.technique);
+      auto slot = pairIndex_.find(k);
+      if (slot == pairIndex_.end()) {
+        if (entries_ >= capacity_ || refusedKeys_.count(k) != 0) {
+          if (refusedKeys_.insert(k).second) refusedPairs_ += 1;
+          refusedPairSamples_ += pair.samples;
+          cell.refusedPairSamples += pair.samples;
+          continue;
+        }
+        slot = pairIndex_.emplace(k, uint32_t(cell.pairs.size())).first;
+        SparsePairStatistics fresh;
+        fresh.technique = pair.technique;
+        cell.pairs.push_back(fresh);
+        entries_ += 1;
+      }
+      SparsePairStatistics& into = cell.pairs[slot->second];
+      into.aTT += pair.aTT;
+      into.aTB += pair.aTB;
+      into.bT += pair.bT;
+      into.samples += pair.samples;
+    }
+  }
+  for (uint64_t k : other.refusedKeys_)
+    if (pairIndex_.count(k) == 0 && cells_.count(uint32_t(k >> 32)) != 0 && refusedKeys_.insert(k).second)
+      refusedPairs_ += 1;
+  refusedCellSamples_ += other.refusedCellSamples_;   // never entered the other table's cells
 }
 
 const SparseCellStatistics* SparseStatisticsTable::cell(uint32_t cellId) const {

@@ -67,6 +67,7 @@ struct SparsePairStatistics {
 struct SparseCellStatistics {
   SparseCellTotals totals;
   std::vector<SparsePairStatistics> pairs;   // in order of first sample
+  uint64_t refusedPairSamples = 0;           // samples in the totals whose pair did not fit
 };
 
 // What add() did with a sample.
@@ -88,6 +89,15 @@ class SparseStatisticsTable {
 
   SparseAddResult add(uint32_t cell, const SparseSample& sample);
 
+  // Adds another table's statistics (e.g. one a worker thread gathered alone), with the same
+  // capacity rules as add(): a new cell that does not fit is refused with all its samples, a new
+  // pair that does not fit (or was refused here before) leaves its samples in its cell's totals
+  // only. The other table's refusal counts are added to these; the pairs it refused become
+  // refused here too where this table does not hold them yet. A pair it refused that this table
+  // does hold misses those samples while its cell's totals keep them (still unbiased, a worse
+  // alpha), so give a worker's table at least this table's capacity.
+  void merge(const SparseStatisticsTable& other);
+
   // The cell's statistics, or nullptr when it has none.
   const SparseCellStatistics* cell(uint32_t cell) const;
   const std::unordered_map<uint32_t, SparseCellStatistics>& cells() const { return cells_; }
@@ -101,7 +111,7 @@ class SparseStatisticsTable {
   size_t entries() const { return entries_; }
   size_t pairCount() const { return pairIndex_.size(); }
   // Refusals since construction (or clear()): pairs that could not be created (each counted
-  // once), samples whose technique part was refused, samples refused whole.
+  // once), samples held in their cell's totals whose pair was refused, samples in no cell.
   uint64_t refusedPairs() const { return refusedPairs_; }
   uint64_t refusedPairSamples() const { return refusedPairSamples_; }
   uint64_t refusedCellSamples() const { return refusedCellSamples_; }

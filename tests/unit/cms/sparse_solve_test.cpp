@@ -641,6 +641,59 @@ TEST(SparseStatistics, ARefusedPairStaysRefusedWhenAnotherCellFreesEntries) {
   EXPECT_EQ(table.add(0, s), SparseAddResult::Added);   // a pair never refused may use the room
 }
 
+// Worker tables merged into one hold what one table fed every sample holds; with a small
+// destination every sample is still accounted for: in a pair, refused to its cell's totals only,
+// or refused whole.
+TEST(SparseStatistics, MergingWorkerTablesKeepsEverySampleAccountedFor) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0.1, 2.0);
+  std::vector<std::pair<uint32_t, SparseSample>> stream;
+  for (int i = 0; i < 3000; ++i) {
+    SparseSample s;
+    s.technique = i % 4 == 0 ? kNoLightTechnique : uint32_t(rng() % 40);
+    s.pT = s.technique == kNoLightTechnique ? 0.0 : u(rng);
+    s.pB = u(rng);
+    s.pEff = 0.1 * s.pT + s.pB;
+    s.f = Vec(u(rng));
+    stream.emplace_back(uint32_t(rng() % 6), s);
+  }
+  SparseStatisticsTable single(1000);
+  std::vector<SparseStatisticsTable> workers(3, SparseStatisticsTable(1000));
+  for (size_t i = 0; i < stream.size(); ++i) {
+    single.add(stream[i].first, stream[i].second);
+    workers[i % 3].add(stream[i].first, stream[i].second);
+  }
+  SparseStatisticsTable merged(1000);
+  for (const auto& w : workers) merged.merge(w);
+  ASSERT_EQ(merged.cells().size(), single.cells().size());
+  EXPECT_EQ(merged.entries(), single.entries());
+  for (const auto& [id, cell] : single.cells()) {
+    const SparseCellStatistics& m = *merged.cell(id);
+    EXPECT_EQ(m.totals.samples, cell.totals.samples);
+    EXPECT_NEAR(m.totals.aBB, cell.totals.aBB, 1e-12 * cell.totals.aBB);
+    SparseCellSolution a = solveSparseCell(cell, SparseSolveParams{}), b = solveSparseCell(m, SparseSolveParams{});
+    ASSERT_EQ(a.valid, b.valid);
+    EXPECT_LE(maxAbs(a.alphaSum - b.alphaSum), 1e-9 * (maxAbs(a.alphaSum) + 1.0));
+  }
+  // A destination with room for little: nothing is lost without being counted.
+  SparseStatisticsTable small(30);
+  for (const auto& w : workers) small.merge(w);
+  EXPECT_EQ(small.entries(), 30u);
+  EXPECT_GT(small.refusedPairs(), 0u);
+  uint64_t inCells = 0, refusedToTotals = 0;
+  for (const auto& [id, cell] : small.cells()) {
+    uint64_t inPairs = 0, noTechnique = 0;
+    for (const auto& p : cell.pairs) inPairs += p.samples;
+    for (size_t i = 0; i < stream.size(); ++i)
+      if (stream[i].first == id && stream[i].second.technique == kNoLightTechnique) noTechnique += 1;
+    EXPECT_EQ(inPairs + cell.refusedPairSamples + noTechnique, cell.totals.samples) << id;
+    inCells += cell.totals.samples;
+    refusedToTotals += cell.refusedPairSamples;
+  }
+  EXPECT_EQ(refusedToTotals, small.refusedPairSamples());
+  EXPECT_EQ(inCells + small.refusedCellSamples(), stream.size());
+}
+
 TEST(SparseSolve, TenThousandTechniquesInOneCellSolveFast) {
   const uint32_t T = 10000;
   SparseStatisticsTable table(T + 1);
