@@ -1,0 +1,68 @@
+// The buffers of the per-triangle control variate (docs/estimator.md §2, §4; ../shared/cms.md §4):
+// one control-variate technique per emissive triangle (or per merged group of triangles, beyond
+// the technique budget), its statistics stored sparsely per (cell, technique) pair in the hashed
+// table of shared/cms_pair_table.h, and its solved coefficients per pair. Rows in the format of
+// shared/buffer_table.h.
+//
+// What lives where:
+//   - per cell (shared/cms_state.h, unchanged): A_BB, b_B and the sample count in the cell
+//     statistics, which the per-cluster system shares (its BSDF row is the same); alpha_B, the
+//     validity flag and sum alpha_t + alpha_B in the cell solution (solutionAlphaB, solutionValid,
+//     solutionAlphaSum); the selection c_k as today.
+//   - per pair slot (here): the key (cell, technique), A_tt, A_tB, b_t (shared/cms_pair_layout.h),
+//     the pair's sample count, and alpha_t (RGB, kPairAlphaStride floats per slot).
+//   - per technique source (here, TECHNIQUES): which technique a light sample's point belongs to
+//     and that technique's share of its cluster's light sampling.
+//
+// Keys persist for the whole render (slots are never freed, so a pair keeps its slot and its
+// alpha across iterations); statistics are zeroed per cell when the cell restarts (a new selection,
+// docs/estimator.md §7). A pair the full table refuses has alpha_t = 0 (its samples still add to the
+// cell's A_BB, b_B): unbiased, and counted in PAIR_COUNTERS.
+#ifndef MIXTRACE_SHARED_CMS_PAIR_STATE_H
+#define MIXTRACE_SHARED_CMS_PAIR_STATE_H
+#include "shared/buffer_table.h"
+#include "shared/cms_pair_layout.h"
+#include "shared/dialect.h"
+
+// Extents (host/wavefront/device_buffers.cpp): PAIR_SLOTS = the table's capacity (a power of two,
+// pairTableCapacityFor), PAIR_STATS = capacity x kPairStatsStride, PAIR_ALPHAS = capacity x
+// kPairAlphaStride; placeholders of one element for the methods without the per-triangle CV.
+#define BUFFER_PAIR_KEYS(X) X(PAIR_KEYS, pairKeys, 34, READ_WRITE, uint64_t, PAIR_SLOTS, "CMS pair table keys")
+#define BUFFER_PAIR_STATS(X) X(PAIR_STATS, pairStats, 35, READ_WRITE, float, PAIR_STATS, "CMS pair statistics")
+#define BUFFER_PAIR_SAMPLES(X) X(PAIR_SAMPLES, pairSamples, 36, READ_WRITE, uint, PAIR_SLOTS, "CMS pair sample counts")
+#define BUFFER_PAIR_ALPHA(X) X(PAIR_ALPHA, pairAlpha, 37, READ_WRITE, float, PAIR_ALPHAS, "CMS pair coefficients")
+// Indexed by technique source: emitter index e for a point on an area light's emitter e (EmitterGpu),
+// emitterCount + light for a punctual light (its own technique, counting measure).
+#define BUFFER_TECHNIQUES(X) X(TECHNIQUES, techniques, 38, READ_ONLY, TechniqueRefGpu, UPLOADED, "CV techniques")
+// Counters the host reads after the render (kPairCounter*), for the stats JSON.
+#define BUFFER_PAIR_COUNTERS(X) \
+  X(PAIR_COUNTERS, pairCounters, 39, READ_BACK, uint, PAIR_COUNTER_SLOTS, "CMS pair counters")
+// Binding 43 is the sparse solve's own scratch (per cell), owned by its pass.
+
+#define CMS_PAIR_BUFFERS(X) \
+  BUFFER_PAIR_KEYS(X) BUFFER_PAIR_STATS(X) BUFFER_PAIR_SAMPLES(X) BUFFER_PAIR_ALPHA(X) BUFFER_TECHNIQUES(X) \
+  BUFFER_PAIR_COUNTERS(X)
+
+SHARED_BEGIN
+CMS_PAIR_BUFFERS(BUFFER_BINDING_CONSTANT)
+
+// alpha_t of the pair in `slot`, RGB at kPairAlphaStride * slot + channel.
+const uint kPairAlphaStride = 3u;
+SHARED_FN uint pairAlphaIndex(uint slot, uint channel) { return kPairAlphaStride * slot + channel; }
+
+// The technique a light point belongs to, and the technique's share Q_t of its cluster's light
+// sampling: the summed probability, once the cluster is chosen, of picking one of its triangles
+// (sum over its emitters of the light's pmf in the cluster x the emitter's pmf in the light). The
+// technique's normalised density is p_t(z) = p_k(z) / Q_t on its support (docs/estimator.md §2):
+// for a technique of one triangle, exactly the point's density on that triangle.
+struct TechniqueRefGpu {
+  uint technique;   // in [0, techniqueCount)
+  float share;      // Q_t, in (0, 1]
+};
+
+// PAIR_COUNTERS entries.
+const uint kPairCounterPairSamples = 0u;      // light-technique samples that found or claimed their pair
+const uint kPairCounterRefusedSamples = 1u;   // light-technique samples whose pair the table refused
+const uint kPairCounterSlots = 2u;            // PAIR_COUNTER_SLOTS: the counters' extent
+SHARED_END
+#endif
