@@ -202,9 +202,9 @@ std::vector<OptionRow> samplingRows() {
             "learned/cv/cms: light clusters, one technique each, {range}",
             [](D& d, const V& v) { d.render->maxClusters = int(v.integer); }),
     withZeroWord(integer("--cells", "N", 1, 4096, "auto", G::Sampling,
-                         "learned/cv/cms: {range} cells along the scene's longest axis, times 6 normal "
-                         "directions; auto (the default) sizes a cell to cover about 16x16 pixels where "
-                         "the camera's primary rays hit the scene (cms/grid_resolution.h)",
+                         "learned/cv/cms: cells along the scene's longest axis ({range}), times 6 normal "
+                         "directions; auto (the default) makes a cell about 16x16 pixels of footprint "
+                         "where the camera's primary rays hit the scene, 4..256",
                          [](D& d, const V& v) { d.render->cells = int(v.integer); }),
                  "auto"),
     choice("--relative-weighting", "on|off", "setting", {"on", "off"}, onOff(r.relativeWeighting), G::Sampling,
