@@ -55,7 +55,8 @@ struct RenderOptions {
   bool generalPipelines = false; // --general-pipelines: no specialisation on scene features
   bool variance = false;         // --variance: also write per-pixel variance of the mean
   int maxClusters;               // --max-clusters: CMS light clusters (techniques)
-  int cells;                     // --cells: CMS cells along the longest scene axis
+  int cells;                     // --cells: CMS cells along the longest scene axis; 0 = auto
+                                 // (resolved by setUpMethod, cms/grid_resolution.h)
   bool relativeWeighting;        // --relative-weighting on|off: CMS statistics weighting
                                  // (docs/estimator.md §5)
   int trainSpp;                  // --train-spp N: no CMS solve after N spp (0 = no limit)
