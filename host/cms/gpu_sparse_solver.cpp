@@ -13,9 +13,13 @@ namespace mixtrace {
 
 // SparseSolveConstants fits the guaranteed push-constant range: checked in vulkan/layout_checks.cpp.
 
-GpuSparseSolver::GpuSparseSolver(VulkanContext& ctx)
-    : ctx_(ctx),
-      pass_(ctx, "sparse_solve", BINDINGS_OF(SPARSE_SOLVE_BUFFERS), sizeof(shared::SparseSolveConstants), {}) {
+GpuSparseSolver::GpuSparseSolver(VulkanContext& ctx) : ctx_(ctx) {
+  for (uint32_t stage = 0; stage < shared::kSparseStageCount; ++stage) {
+    std::vector<uint32_t> specialization(SPEC_SPARSE_STAGE + 1, 0u);   // the renderer's ids: unused here
+    specialization[SPEC_SPARSE_STAGE] = stage;
+    passes_.push_back(std::make_unique<ComputePass>(ctx, "sparse_solve", BINDINGS_OF(SPARSE_SOLVE_BUFFERS),
+                                                    sizeof(shared::SparseSolveConstants), specialization));
+  }
   reserve(1);
 }
 
@@ -32,7 +36,7 @@ void GpuSparseSolver::reserve(uint32_t cells) {
 void GpuSparseSolver::bind(const BufferBindings& buffers) {
   bound_ = buffers;
   bound_[shared::BINDING_SPARSE_SCRATCH] = &scratch_;
-  pass_.bind(bound_);
+  for (auto& pass : passes_) pass->bind(bound_);
 }
 
 void GpuSparseSolver::check(const SparseSolveSettings& s) const {
@@ -47,7 +51,15 @@ void GpuSparseSolver::check(const SparseSolveSettings& s) const {
   if (bound_.empty()) throw Error("CMS sparse solve: recorded before bind() (or after reserve() grew the scratch)");
 }
 
-void GpuSparseSolver::stage(VkCommandBuffer cmd, const SparseSolveSettings& s, uint32_t stage, uint32_t items) const {
+namespace {
+// What the timings call each stage (shared/cms_sparse_solve.h), indexed by stage.
+const char* const kStageLabels[shared::kSparseStageCount] = {
+    "sparse_solve.init",  "sparse_solve.max",   "sparse_solve.mean",   "sparse_solve.ridge",  "sparse_solve.schur",
+    "sparse_solve.pivot", "sparse_solve.alpha", "sparse_solve.finish", "sparse_solve.clear", "sparse_restart"};
+}  // namespace
+
+void GpuSparseSolver::stage(VkCommandBuffer cmd, const SparseSolveSettings& s, uint32_t stage, uint32_t items,
+                            PassTimer* timer) const {
   shared::SparseSolveConstants c{};
   c.cellCount = s.cellCount;
   c.clusterCount = s.clusterCount;
@@ -56,7 +68,6 @@ void GpuSparseSolver::stage(VkCommandBuffer cmd, const SparseSolveSettings& s, u
   c.minTechniqueSamples = s.minTechniqueSamples;
   c.flags = s.flags;
   c.ridge = s.ridge;
-  c.stage = stage;
   // One invocation per item; workgroups beyond the device's limit in x wrap into y (the shader
   // computes the item from both), so a table of 2^22 slots fits lavapipe's 65535.
   uint32_t groups = (items + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize;
@@ -65,31 +76,30 @@ void GpuSparseSolver::stage(VkCommandBuffer cmd, const SparseSolveSettings& s, u
   uint32_t groupsY = (groups + groupsX - 1) / groupsX;
   if (groupsY > ctx_.properties().limits.maxComputeWorkGroupCount[1])
     throw Error("CMS sparse solve: " + std::to_string(items) + " items exceed the device's dispatch limits");
-  pass_.dispatch(cmd, &c, sizeof(c), groupsX, groupsY);
+  passes_[stage]->dispatch(cmd, &c, sizeof(c), groupsX, groupsY);
   computeBarrier(cmd);
+  if (timer) timer->mark(cmd, kStageLabels[stage]);
 }
 
 void GpuSparseSolver::record(VkCommandBuffer cmd, const SparseSolveSettings& s, PassTimer* timer) const {
   check(s);
   if (s.cellCount == 0) return;
   const uint32_t cells = s.cellCount, pairs = s.pairCapacity;
-  stage(cmd, s, shared::kSparseInitCells, cells);
-  stage(cmd, s, shared::kSparseMaxPairs, pairs);
-  stage(cmd, s, shared::kSparseMeanPairs, pairs);
-  stage(cmd, s, shared::kSparseRidgeCells, cells);
-  stage(cmd, s, shared::kSparseSchurPairs, pairs);
-  stage(cmd, s, shared::kSparsePivotCells, cells);
-  stage(cmd, s, shared::kSparseAlphaPairs, pairs);
-  stage(cmd, s, shared::kSparseFinishCells, cells);
-  stage(cmd, s, shared::kSparseClearPairs, pairs);
-  if (timer) timer->mark(cmd, "sparse_solve");
+  stage(cmd, s, shared::kSparseInitCells, cells, timer);
+  stage(cmd, s, shared::kSparseMaxPairs, pairs, timer);
+  stage(cmd, s, shared::kSparseMeanPairs, pairs, timer);
+  stage(cmd, s, shared::kSparseRidgeCells, cells, timer);
+  stage(cmd, s, shared::kSparseSchurPairs, pairs, timer);
+  stage(cmd, s, shared::kSparsePivotCells, cells, timer);
+  stage(cmd, s, shared::kSparseAlphaPairs, pairs, timer);
+  stage(cmd, s, shared::kSparseFinishCells, cells, timer);
+  stage(cmd, s, shared::kSparseClearPairs, pairs, timer);
 }
 
 void GpuSparseSolver::recordRestart(VkCommandBuffer cmd, const SparseSolveSettings& s, PassTimer* timer) const {
   check(s);
   if (s.cellCount == 0) return;
-  stage(cmd, s, shared::kSparseRestartPairs, s.pairCapacity);
-  if (timer) timer->mark(cmd, "sparse_restart");
+  stage(cmd, s, shared::kSparseRestartPairs, s.pairCapacity, timer);
 }
 
 }  // namespace mixtrace

@@ -13,8 +13,10 @@
 //      kSolveControlVariate's alpha_B: the flag leaves the three slots above as step 1 wrote them):
 //      selection, and the restart of a cell whose selection changed (CELL_SAMPLES = 0);
 //   3. recordRestart(): zeroes the pair statistics and sample counts of every restarted cell.
-// Owns its pipeline, its descriptor set and the per-cell scratch (binding 43).
+// Owns its pipelines (one per stage), their descriptor sets and the per-cell scratch (binding 43).
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -53,7 +55,7 @@ class GpuSparseSolver {
 
   // Records the solve (step 1 above), its stages separated by compute barriers and followed by
   // one, so the next pass reads the solution. Statistics written by earlier passes must already be
-  // visible. With a timer, marks "sparse_solve" once after the last stage. Throws mixtrace::Error
+  // visible. With a timer, marks each stage ("sparse_solve.<stage>": 9 marks). Throws mixtrace::Error
   // for more cells than reserved, a capacity that is not a power of two, L > kMaxClusters, or
   // counts beyond the device's dispatch limits.
   void record(VkCommandBuffer cmd, const SparseSolveSettings& settings, PassTimer* timer = nullptr) const;
@@ -62,10 +64,11 @@ class GpuSparseSolver {
 
  private:
   void check(const SparseSolveSettings& settings) const;
-  void stage(VkCommandBuffer cmd, const SparseSolveSettings& settings, uint32_t stage, uint32_t items) const;
+  void stage(VkCommandBuffer cmd, const SparseSolveSettings& settings, uint32_t stage, uint32_t items,
+             PassTimer* timer) const;
 
   VulkanContext& ctx_;
-  ComputePass pass_;
+  std::vector<std::unique_ptr<ComputePass>> passes_;   // one per stage (SPEC_SPARSE_STAGE)
   Buffer scratch_;
   uint32_t reservedCells_ = 0;
   BufferBindings bound_;

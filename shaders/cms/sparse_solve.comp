@@ -3,7 +3,7 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 // The sparse per-cell solve of the per-triangle control variate (the stages, the maths and the
 // scratch layout: shared/cms_sparse_solve.h; the rules: host/cms/sparse_solve.h). One pipeline,
-// one dispatch per stage (pc.stage): one invocation per cell or per pair-table slot, spread over a
+// one dispatch per stage (STAGE): one invocation per cell or per pair-table slot, spread over a
 // 2D grid of workgroups so that any count fits the dispatch limits (host/cms/gpu_sparse_solver.cpp).
 #include "cms/sparse_solve_interface.h"
 #define PASS_BUFFERS SPARSE_SOLVE_BUFFERS
@@ -11,6 +11,7 @@
 #include "gpu/buffers.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
+layout(constant_id = SPEC_SPARSE_STAGE) const uint STAGE = kSparseInitCells;
 
 // ---- the per-cell scratch
 
@@ -97,7 +98,6 @@ void initCell(uint cell) {
   bool useB = cmsUsableDiagonal(aBB) && cmsIsFinite3(cellBB(cell));
   for (uint i = 0u; i < kSparseScratchStride; ++i) sparseScratch[scratchIndex(cell, i)] = 0u;
   sparseScratch[scratchIndex(cell, kSparseMaxDiagonal)] = useB ? floatBitsToUint(aBB) : 0u;
-  sparseScratch[scratchIndex(cell, kSparseUsable)] = useB ? 1u : 0u;
   sparseScratch[scratchIndex(cell, kSparseFlags)] = useB ? kSparseFlagUseB : 0u;
 }
 
@@ -107,7 +107,7 @@ void ridgeCell(uint cell) {
   float invMax = maxDiag > 0.0 ? 1.0 / maxDiag : 1.0;
   float aBB = cellABB(cell);
   float meanOverMax = (useB ? aBB * invMax : 0.0) + scratchFloat(cell, kSparseDiagonalSum);
-  float count = float(sparseScratch[scratchIndex(cell, kSparseUsable)]);
+  float count = float(sparseScratch[scratchIndex(cell, kSparsePairsIn)] + (useB ? 1u : 0u));
   float ridge = (cmsIsFinite(pc.ridge) && pc.ridge > 0.0) ? pc.ridge : 0.0;
   float r = count > 0.0 ? (ridge * (meanOverMax / count)) * maxDiag : 0.0;
   setScratchFloat(cell, kSparseRidge, r);
@@ -156,38 +156,46 @@ void finishCell(uint cell) {
 
 void cellStage(uint cell) {
   if (cell >= pc.cellCount) return;
-  if (pc.stage == kSparseInitCells) initCell(cell);
-  else if (pc.stage == kSparseRidgeCells) ridgeCell(cell);
-  else if (pc.stage == kSparsePivotCells) pivotCell(cell);
-  else if (pc.stage == kSparseFinishCells) finishCell(cell);
+  if (STAGE == kSparseInitCells) initCell(cell);
+  else if (STAGE == kSparseRidgeCells) ridgeCell(cell);
+  else if (STAGE == kSparsePivotCells) pivotCell(cell);
+  else if (STAGE == kSparseFinishCells) finishCell(cell);
 }
 
 void pairStage(uint slot) {
   if (slot >= pc.pairCapacity) return;
   Pair p;
-  if (pc.stage == kSparseRestartPairs) {
+  // The restart and the clear need the slot's cell only, not its statistics.
+  uint64_t key = pairKeys[slot];
+  if (key == uint64_t(0)) return;
+  uint cell = pairKeyCell(key);
+  if (cell >= pc.cellCount) return;
+  if (STAGE == kSparseRestartPairs) {
     // Keys stay: the pair keeps its slot (shared/cms_pair_state.h); only what it gathered restarts.
-    if (!readPair(slot, p) || cellSamples[p.cell] != 0u) return;
+    if (cellSamples[cell] != 0u) return;
     for (uint i = 0u; i < kPairStatsStride; ++i) pairStats[kPairStatsStride * slot + i] = 0.0;
     pairSamples[slot] = 0u;
     return;
   }
+  if (STAGE == kSparseClearPairs) {
+    if ((scratchFlags(cell) & kSparseFlagValid) == 0u) writePairAlpha(slot, vec3(0.0));
+    return;
+  }
   if (!readPair(slot, p)) return;
-  if (pc.stage == kSparseMaxPairs) {
+  if (STAGE == kSparseMaxPairs) {
     if (!p.usable) return;
     atomicMax(sparseScratch[scratchIndex(p.cell, kSparseMaxDiagonal)], floatBitsToUint(p.aTT));
-    atomicAdd(sparseScratch[scratchIndex(p.cell, kSparseUsable)], 1u);
     atomicAdd(sparseScratch[scratchIndex(p.cell, kSparsePairsIn)], 1u);
-  } else if (pc.stage == kSparseMeanPairs) {
+  } else if (STAGE == kSparseMeanPairs) {
     if (p.usable) scratchAdd(p.cell, kSparseDiagonalSum, p.aTT * (1.0 / scratchFloat(p.cell, kSparseMaxDiagonal)));
-  } else if (pc.stage == kSparseSchurPairs) {
+  } else if (STAGE == kSparseSchurPairs) {
     if (!p.usable || !((scratchFlags(p.cell) & kSparseFlagUseB) != 0u)) return;   // with B out l_t = 0
     float st, lt;
     vec3 zt;
     pairRow(p, st, lt, zt);
     scratchAdd(p.cell, kSparseSumL2, lt * lt);
     scratchAdd3(p.cell, kSparseSumLZ, lt * zt);
-  } else if (pc.stage == kSparseAlphaPairs) {
+  } else if (STAGE == kSparseAlphaPairs) {
     vec3 alpha = vec3(0.0);
     if (p.usable) {
       float st, lt;
@@ -201,15 +209,13 @@ void pairStage(uint slot) {
       scratchAdd3(p.cell, kSparseAlphaSum, alpha);
     }
     writePairAlpha(slot, alpha);
-  } else if (pc.stage == kSparseClearPairs) {
-    if ((scratchFlags(p.cell) & kSparseFlagValid) == 0u) writePairAlpha(slot, vec3(0.0));
   }
 }
 
 void main() {
   uint i = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * kWorkgroupSize) + gl_GlobalInvocationID.x;
-  if (pc.stage == kSparseInitCells || pc.stage == kSparseRidgeCells || pc.stage == kSparsePivotCells ||
-      pc.stage == kSparseFinishCells)
+  if (STAGE == kSparseInitCells || STAGE == kSparseRidgeCells || STAGE == kSparsePivotCells ||
+      STAGE == kSparseFinishCells)
     cellStage(i);
   else
     pairStage(i);

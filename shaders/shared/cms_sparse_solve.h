@@ -9,7 +9,8 @@
 //     alpha_t = (b_t - A_tB alpha_B) / A_tt
 // Jacobi-scaled and with the ridge r added to every diagonal entry. A cell's pairs are scattered
 // over the hashed table, so every per-cell sum is an atomic add from the pair stages; a cell has no
-// list of its pairs and needs none. Stages, each one dispatch, a barrier between them:
+// list of its pairs and needs none. Stages, each one dispatch of its own pipeline (SPEC_SPARSE_STAGE),
+// a barrier between them:
 //   kSparseInitCells   cells: the BSDF row (useB, A_BB as the first candidate of the maximum
 //                      diagonal), every sum zeroed.
 //   kSparseMaxPairs    pairs: the largest usable diagonal (atomicMax on the bits: for positive
@@ -50,8 +51,8 @@ BUFFER_SPARSE_SCRATCH(BUFFER_BINDING_CONSTANT)
 
 // Scratch slots of one cell.
 const uint kSparseMaxDiagonal = 0u;   // float bits: the largest usable diagonal (A_BB included)
-const uint kSparseUsable = 1u;        // uint: usable techniques, B included (the ridge's mean)
-const uint kSparsePairsIn = 2u;       // uint: usable light techniques (pairs) in the system
+const uint kSparsePairsIn = 1u;       // uint: usable light techniques (pairs); + B: the ridge's count
+const uint kSparseUnused = 2u;
 const uint kSparseFlags = 3u;         // uint: kSparseFlag*
 const uint kSparseDiagonalSum = 4u;   // float: sum of the pairs' A_tt / max diagonal
 const uint kSparseRidge = 5u;         // float: r
@@ -66,7 +67,11 @@ const uint kSparseFlagUseB = 1u;        // the BSDF technique is in the system
 const uint kSparseFlagNonFinite = 2u;   // some alpha is not finite (the cell is invalid)
 const uint kSparseFlagValid = 4u;       // the cell's control variate is used (written by the last cell stage)
 
-// SparseSolveConstants.stage.
+// The stage a pipeline of the pass runs: a specialization constant, one pipeline per stage, so
+// that each is compiled alone (lavapipe runs every branch of a shader with masks: a stage chosen
+// by a push constant cost the sum of all stages). After the renderer's constant ids (SPEC_COUNT).
+#define SPEC_SPARSE_STAGE 8
+// Its values.
 const uint kSparseInitCells = 0u;
 const uint kSparseMaxPairs = 1u;
 const uint kSparseMeanPairs = 2u;
@@ -88,7 +93,7 @@ struct SparseSolveConstants {
   uint minTechniqueSamples;   // PAIR_SAMPLES below this: the technique is dropped (alpha_t = 0)
   uint flags;                 // kSolveControlVariate: write the solution; else zeros, invalid
   float ridge;                // relative to the mean diagonal of the techniques in the system
-  uint stage;                 // kSparse*
+  uint pad0;
 };
 
 // The Jacobi scale (a + r)^-1/2 as a^-1/2 (1 + r/a)^-1/2, as the per-cluster solve forms it
