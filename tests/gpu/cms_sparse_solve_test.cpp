@@ -448,6 +448,9 @@ TEST_F(CmsSparseSolve, StabilityCasesMatchTheDoubleSolveAndStayFinite) {
   c.push_back(handCell(1.2e-38, Vec(1e-38), 1000, {{1.2e-38, 1e-39, 1e-38, 1e-38, 1e-38}, {3e38, 1e38, 3e38, 3e38, 3e38}}));
   c.push_back(handCell(1.0, Vec(1.0), 1000, {{2e-38, 0.0, 3e38, 3e38, 3e38}}));
   c.push_back(handCell(1.0, Vec(1.0), 1000, {{1e-10, 0.0, 1e21, 1e21, 1e21}}));
+  // The largest diagonal near FLT_MAX (its reciprocal is denormal): the ridge still counts it.
+  c.push_back(handCell(1.0, Vec(1.0), 1000, {{3e38, 1e19, 3e38, 1e38, 2e38}, {1.0, 0.1, 0.5, 0.5, 0.5}}));
+  c.push_back(handCell(3e38, Vec(3e38), 1000, {{3e38, 1e38, 1e38, 1e38, 1e38}, {2e38, 1e37, 1e38, 2e38, 3e38}}));
   pr.capacity = shared::pairTableCapacityFor(pairsOf(pr));
   pr.settings = cvSettings(2);
   Comparison cmp = compare(pr, solve(pr), 2e-4);
