@@ -4,7 +4,7 @@
 // The sparse per-cell solve of the per-triangle control variate (the stages, the maths and the
 // scratch layout: shared/cms_sparse_solve.h; the rules: host/cms/sparse_solve.h). One pipeline,
 // one dispatch per stage (STAGE): one invocation per cell or per pair-table slot, spread over a
-// 2D grid of workgroups so that any count fits the dispatch limits (host/cms/gpu_sparse_solver.cpp).
+// 2D grid of workgroups so that any count fits the dispatch limits (host/wavefront/passes/sparse_solve_pass.cpp).
 #include "cms/sparse_solve_interface.h"
 #define PASS_BUFFERS SPARSE_SOLVE_BUFFERS
 #define PASS_CONSTANTS SparseSolveConstants

@@ -1,5 +1,5 @@
 // The sparse per-triangle control-variate solve as the GPU runs it (shaders/cms/sparse_solve.comp
-// through host/cms/gpu_sparse_solver, on the first Vulkan device: lavapipe here), held to the
+// through host/wavefront/passes/sparse_solve_pass, on the first Vulkan device: lavapipe here), held to the
 // double-precision solveSparseCell (host/cms/sparse_solve.h) on the same float statistics: random
 // cells of 1..200 pairs, the stability cases of the per-cluster solve (singular, zero rows,
 // condition 1e12, 1 and 1e8 samples, scales 1e-8..1e8, NaN/Inf inputs), a full table, 10,000
@@ -22,8 +22,8 @@
 
 #include <gtest/gtest.h>
 
-#include "cms/gpu_solver.h"
-#include "cms/gpu_sparse_solver.h"
+#include "wavefront/passes/solve_pass.h"
+#include "wavefront/passes/sparse_solve_pass.h"
 #include "cms/reference_solve.h"
 #include "cms/sparse_solve.h"
 #include "cms/sparse_statistics.h"
