@@ -23,7 +23,9 @@ MethodSetup setUpMethod(const PreparedScene& prepared, const RenderOptions& o, c
   s.floatAtomics = o.floatAtomics;
   s.trainSpp = uint32_t(o.trainSpp);
   s.trainOnce = o.trainOnce;
-  m.lights = buildMethodLights(prepared, *row, uint32_t(o.maxClusters));
+  s.perTriangleCv = o.perTriangleCv;
+  s.pairTableSlots = uint32_t(o.pairTableSlots);
+  m.lights = buildMethodLights(prepared, *row, uint32_t(o.maxClusters), uint32_t(o.maxTechniques));
   m.estimator = method;
   if (cmsReducesToPlainMis(s.cms, m.lights.cms)) {
     info(plainMisNote(m.lights.cms));

@@ -56,6 +56,9 @@ struct RenderOptions {
   bool variance = false;         // --variance: also write per-pixel variance of the mean
   int maxClusters;               // --max-clusters: CMS light clusters (techniques)
   int cells;                     // --cells: CMS cells along the longest scene axis
+  bool perTriangleCv;            // --cv-techniques triangle|cluster: control-variate granularity
+  int maxTechniques;             // --max-techniques: the control variate's technique budget
+  int pairTableSlots;            // --pair-table-slots: the pair table's size (0 = automatic; testing aid)
   bool relativeWeighting;        // --relative-weighting on|off: CMS statistics weighting
                                  // (docs/estimator.md §5)
   int trainSpp;                  // --train-spp N: no CMS solve after N spp (0 = no limit)
