@@ -129,7 +129,8 @@ CellSolution solveCellReference(const double* stats, uint32_t samples, uint32_t 
   for (int c = 0; c < 3; ++c)   // every vertex adds the sum (bound: shared/cms_solve.h)
     allFinite = allFinite && std::abs(alphaSum[c]) <= double(shared::kSolveMaxAlphaSum);
   out.solved = samples >= params.minSamples && !techniques.empty() && allFinite;
-  out.valid = out.solved && (params.flags & shared::kSolveControlVariate) != 0;
+  out.keepControlVariate = (params.flags & shared::kSolveKeepControlVariate) != 0;
+  out.valid = out.solved && (params.flags & shared::kSolveControlVariate) != 0 && !out.keepControlVariate;
   if (out.valid) {
     out.alpha = alpha;
     out.alphaB = alphaB;

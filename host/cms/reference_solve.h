@@ -21,6 +21,10 @@ struct CellSolution {
   bool solved = false;             // the system was solved (alpha finite, enough samples), whatever the flags
   std::vector<bool> inSystem;      // per technique, clusters then B: took part in the final system
   bool resetStatistics = false;    // the cell's statistics restart (new selection, or non-finite alpha)
+  // kSolveKeepControlVariate: alpha, alphaB, alphaSum are 0 and valid false as without
+  // kSolveControlVariate, and the caller leaves the cell's alpha_B, valid and sum of alpha as the
+  // sparse solve (one technique per emissive triangle) wrote them.
+  bool keepControlVariate = false;
 };
 
 // stats: cellStatsStride(L) floats of one cell; defaults: L floats (the default selection pmf);

@@ -16,6 +16,7 @@
 #include "shared/bindings.h"
 #include "shared/cluster_layout.h"
 #include "shared/cms_layouts.h"
+#include "shared/cms_sparse_solve.h"
 #include "shared/display.h"
 #include "shared/layouts.h"
 #include "tests/cell_lookup_interface.h"
@@ -67,6 +68,7 @@ PUSH_CONSTANTS_FIT(VertexConstants)
 PUSH_CONSTANTS_FIT(AccumulateConstants)
 PUSH_CONSTANTS_FIT(PixelEstimateConstants)
 PUSH_CONSTANTS_FIT(SolveParams)
+PUSH_CONSTANTS_FIT(SparseSolveConstants)
 PUSH_CONSTANTS_FIT(DisplayConstants)
 PUSH_CONSTANTS_FIT(TraceRaysConstants)
 PUSH_CONSTANTS_FIT(CellLookupConstants)
@@ -78,7 +80,8 @@ PUSH_CONSTANTS_FIT(PairLookupConstants)
 #define ROW_BINDING(ID, name, binding, access, Type, extent, label) binding,
 constexpr uint32_t kRowBindings[] = {SCENE_BUFFERS(ROW_BINDING) PATH_STATE_BUFFERS(ROW_BINDING)
                                          CMS_STATE_BUFFERS(ROW_BINDING) METHOD_BUFFERS(ROW_BINDING)
-                                         BUFFER_WINDOW(ROW_BINDING) PAIR_LOOKUP_BUFFERS(ROW_BINDING)};
+                                         BUFFER_WINDOW(ROW_BINDING) PAIR_LOOKUP_BUFFERS(ROW_BINDING)
+                                         BUFFER_SPARSE_SCRATCH(ROW_BINDING)};
 #undef ROW_BINDING
 constexpr bool bindingsDistinct() {
   for (size_t i = 0; i < std::size(kRowBindings); ++i)

@@ -55,6 +55,11 @@ SHARED_FN uint solutionAlphaSum(uint L, uint channel) { return 4u * L + 4u + cha
 // Solve pass flags (SolveParams.flags).
 const uint kSolveLearnSelection = 1u;   // write learned c_k (methods learned, cms); else the defaults
 const uint kSolveControlVariate = 2u;   // write alpha (methods cv, cms); else alpha = 0, invalid
+// The control variate is the sparse solve's (one technique per emissive triangle, shared/cms_sparse_solve.h,
+// recorded before this solve): selection and restarts as always, alpha_k only feed the selection
+// weights (the slots end as without kSolveControlVariate), and solutionAlphaB, solutionValid and
+// solutionAlphaSum keep what the sparse solve wrote. Overrides kSolveControlVariate.
+const uint kSolveKeepControlVariate = 4u;
 
 // Push constants of the solve pass (cms/solve_interface.h): the whole range of its pipeline layout
 // (host/vulkan/layout_checks.cpp checks that it fits the guaranteed 128 bytes).

@@ -24,6 +24,9 @@
 //   - With kSolveControlVariate the solved alpha is written and valid = 1; without it alpha = 0
 //     and valid = 0, but the solve still runs: its alpha feeds the learned selection ("learned"
 //     method, selection without a control variate).
+//   - With kSolveKeepControlVariate (the per-triangle control variate, shared/cms_sparse_solve.h)
+//     everything runs as without kSolveControlVariate, but alpha_B, valid and the sum of alpha are
+//     left as the sparse solve wrote them.
 //   - Selection: with kSolveLearnSelection and a solved cell whose weights w_k = max(lum(alpha_k), 0)
 //     have a positive finite sum, c_k = (1 - eps) w_k / sum w + eps d_k; otherwise c_k = d_k. The
 //     defaults d are sanitised (non-finite or negative entries count as 0) and normalised (uniform
@@ -226,7 +229,8 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
   allFinite = allFinite && cmsIsFinite3(alphaSum) && max(max(abs(alphaSum.x), abs(alphaSum.y)), abs(alphaSum.z)) <= kSolveMaxAlphaSum;
 
   bool solved = CELL_SAMPLES(cell) >= params.minSamples && inSystem > 0u && allFinite;
-  bool writeAlpha = solved && (params.flags & kSolveControlVariate) != 0u;
+  bool keepControlVariate = (params.flags & kSolveKeepControlVariate) != 0u;
+  bool writeAlpha = solved && (params.flags & kSolveControlVariate) != 0u && !keepControlVariate;
   bool learn = solved && (params.flags & kSolveLearnSelection) != 0u && weightSum > 0.0f && cmsIsFinite(weightSum);
 
   // The defaults, sanitised and normalised.
@@ -270,6 +274,7 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
     CELL_SAMPLES(cell) = 0u;
   }
 
+  if (keepControlVariate) return;   // the sparse solve's control variate stays
   cmsWriteSolution3(solution + solutionAlphaB(L, 0u), writeAlpha ? alphaB : vec3(0.0f));
   CELL_SOLUTION(solution + solutionValid(L)) = writeAlpha ? 1.0f : 0.0f;
   cmsWriteSolution3(solution + solutionAlphaSum(L, 0u), writeAlpha ? alphaSum : vec3(0.0f));

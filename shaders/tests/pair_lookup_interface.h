@@ -3,8 +3,9 @@
 // host, and writes it to pairSlots[i] (tests/gpu/cms_pair_table_test.cpp); in
 // kPairLookupInsertInOrder mode one invocation inserts them all in order, so its slots are
 // deterministic and comparable with the C++ build's.
-// The rows are the test's own (bindings 40-42, clear of the renderer's 0-33); the renderer's rows
-// of the pair table (keys, statistics, counts) belong in shared/cms_state.h when it is wired.
+// The rows are the test's own (bindings 40-42, clear of the renderer's); its key row has its own
+// ID (PAIR_LOOKUP_KEYS) so that a file may include it beside the renderer's pair table rows
+// (shared/cms_pair_state.h: PAIR_KEYS at 34), as tests/gpu/layout_contract_test.cpp does.
 #ifndef MIXTRACE_TESTS_PAIR_LOOKUP_INTERFACE_H
 #define MIXTRACE_TESTS_PAIR_LOOKUP_INTERFACE_H
 #include "shared/buffer_table.h"
@@ -14,9 +15,9 @@
 #define BUFFER_PAIR_QUERIES(X) X(PAIR_QUERIES, pairQueries, 40, READ_ONLY, uvec2, UPLOADED, "pair queries")
 #define BUFFER_PAIR_SLOTS(X) X(PAIR_SLOTS, pairSlots, 41, READ_BACK, uint, UPLOADED, "pair slots")
 // The hashed pair keys, 0 = an empty slot; the capacity is PairLookupConstants::capacity.
-#define BUFFER_PAIR_KEYS(X) X(PAIR_KEYS, pairKeys, 42, READ_WRITE, uint64_t, UPLOADED, "pair table keys")
+#define BUFFER_PAIR_LOOKUP_KEYS(X) X(PAIR_LOOKUP_KEYS, pairKeys, 42, READ_WRITE, uint64_t, UPLOADED, "pair table keys")
 
-#define PAIR_LOOKUP_BUFFERS(X) BUFFER_PAIR_QUERIES(X) BUFFER_PAIR_SLOTS(X) BUFFER_PAIR_KEYS(X)
+#define PAIR_LOOKUP_BUFFERS(X) BUFFER_PAIR_QUERIES(X) BUFFER_PAIR_SLOTS(X) BUFFER_PAIR_LOOKUP_KEYS(X)
 
 SHARED_BEGIN
 PAIR_LOOKUP_BUFFERS(BUFFER_BINDING_CONSTANT)

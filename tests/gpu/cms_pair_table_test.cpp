@@ -67,7 +67,7 @@ class GpuTable {
     Buffer slots = makeBuffer(ctx_, std::vector<uint32_t>(queries.size(), 0xdeadbeefu), "pair slots");
     pass_.bind(shared::BINDING_PAIR_QUERIES, q);
     pass_.bind(shared::BINDING_PAIR_SLOTS, slots);
-    pass_.bind(shared::BINDING_PAIR_KEYS, keys_);
+    pass_.bind(shared::BINDING_PAIR_LOOKUP_KEYS, keys_);
     shared::PairLookupConstants pc{};
     pc.queryCount = uint32_t(queries.size());
     pc.capacity = capacity_;

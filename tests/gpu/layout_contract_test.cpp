@@ -16,6 +16,7 @@
 
 #include "cms/pixel_estimate_interface.h"
 #include "cms/solve_interface.h"
+#include "cms/sparse_solve_interface.h"
 #include "shared/cluster_layout.h"
 #include "shared/cms_layouts.h"
 #include "shared/display.h"
@@ -159,6 +160,7 @@ std::map<std::string, Interface> interfaces() {
       {"accumulate", INTERFACE(ACCUMULATE_BUFFERS, AccumulateConstants)},
       {"pixel_estimate", INTERFACE(PIXEL_ESTIMATE_BUFFERS, PixelEstimateConstants)},
       {"solve", INTERFACE(SOLVE_BUFFERS, SolveParams)},
+      {"sparse_solve", INTERFACE(SPARSE_SOLVE_BUFFERS, SparseSolveConstants)},
       {"display", INTERFACE_WITH_UNREAD(DISPLAY_BUFFERS, DisplayConstants, DISPLAY_UNREAD_BUFFERS)},
       {"trace_rays", INTERFACE(TRACE_RAYS_BUFFERS, TraceRaysConstants)},
       {"cell_lookup", INTERFACE(CELL_LOOKUP_BUFFERS, CellLookupConstants)},

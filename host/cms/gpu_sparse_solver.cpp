@@ -1,0 +1,105 @@
+#include "cms/gpu_sparse_solver.h"
+
+#include <algorithm>
+#include <string>
+
+#include "shared/layouts.h"
+#include "util/error.h"
+#include "vulkan/context.h"
+#include "vulkan/pass_timer.h"
+#include "vulkan/pipeline.h"
+
+namespace mixtrace {
+
+// SparseSolveConstants fits the guaranteed push-constant range: checked in vulkan/layout_checks.cpp.
+
+GpuSparseSolver::GpuSparseSolver(VulkanContext& ctx) : ctx_(ctx) {
+  for (uint32_t stage = 0; stage < shared::kSparseStageCount; ++stage) {
+    std::vector<uint32_t> specialization(SPEC_SPARSE_STAGE + 1, 0u);   // the renderer's ids: unused here
+    specialization[SPEC_SPARSE_STAGE] = stage;
+    passes_.push_back(std::make_unique<ComputePass>(ctx, "sparse_solve", BINDINGS_OF(SPARSE_SOLVE_BUFFERS),
+                                                    sizeof(shared::SparseSolveConstants), specialization));
+  }
+  reserve(1);
+}
+
+void GpuSparseSolver::reserve(uint32_t cells) {
+  cells = std::max(cells, 1u);
+  if (cells <= reservedCells_) return;
+  scratch_ = Buffer(ctx_, VkDeviceSize(cells) * shared::kSparseScratchStride * sizeof(uint32_t), "CMS sparse solve scratch");
+  reservedCells_ = cells;
+  // The set still names the old scratch: forget the other bindings too, so that record() refuses
+  // to run until bind() has written a complete set again.
+  bound_.clear();
+}
+
+void GpuSparseSolver::bind(const BufferBindings& buffers) {
+  bound_ = buffers;
+  bound_[shared::BINDING_SPARSE_SCRATCH] = &scratch_;
+  for (auto& pass : passes_) pass->bind(bound_);
+}
+
+void GpuSparseSolver::check(const SparseSolveSettings& s) const {
+  if (s.clusterCount > shared::kMaxClusters)
+    throw Error("CMS sparse solve: " + std::to_string(s.clusterCount) + " light clusters, at most " +
+                std::to_string(shared::kMaxClusters) + " are supported");
+  if (s.cellCount > reservedCells_)
+    throw Error("CMS sparse solve: " + std::to_string(s.cellCount) + " cells, scratch reserved for " +
+                std::to_string(reservedCells_));
+  if (s.pairCapacity == 0 || (s.pairCapacity & (s.pairCapacity - 1)) != 0)
+    throw Error("CMS sparse solve: pair table capacity " + std::to_string(s.pairCapacity) + " is not a power of two");
+  if (bound_.empty()) throw Error("CMS sparse solve: recorded before bind() (or after reserve() grew the scratch)");
+}
+
+namespace {
+// What the timings call each stage (shared/cms_sparse_solve.h), indexed by stage.
+const char* const kStageLabels[shared::kSparseStageCount] = {
+    "sparse_solve.init",  "sparse_solve.max",   "sparse_solve.mean",   "sparse_solve.ridge",  "sparse_solve.schur",
+    "sparse_solve.pivot", "sparse_solve.alpha", "sparse_solve.finish", "sparse_solve.clear", "sparse_restart"};
+}  // namespace
+
+void GpuSparseSolver::stage(VkCommandBuffer cmd, const SparseSolveSettings& s, uint32_t stage, uint32_t items,
+                            PassTimer* timer) const {
+  shared::SparseSolveConstants c{};
+  c.cellCount = s.cellCount;
+  c.clusterCount = s.clusterCount;
+  c.pairCapacity = s.pairCapacity;
+  c.minSamples = s.minSamples;
+  c.minTechniqueSamples = s.minTechniqueSamples;
+  c.flags = s.flags;
+  c.ridge = s.ridge;
+  // One invocation per item; workgroups beyond the device's limit in x wrap into y (the shader
+  // computes the item from both), so a table of 2^22 slots fits lavapipe's 65535.
+  uint32_t groups = (items + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize;
+  uint32_t maxX = ctx_.properties().limits.maxComputeWorkGroupCount[0];
+  uint32_t groupsX = std::min(groups, maxX);
+  uint32_t groupsY = (groups + groupsX - 1) / groupsX;
+  if (groupsY > ctx_.properties().limits.maxComputeWorkGroupCount[1])
+    throw Error("CMS sparse solve: " + std::to_string(items) + " items exceed the device's dispatch limits");
+  passes_[stage]->dispatch(cmd, &c, sizeof(c), groupsX, groupsY);
+  computeBarrier(cmd);
+  if (timer) timer->mark(cmd, kStageLabels[stage]);
+}
+
+void GpuSparseSolver::record(VkCommandBuffer cmd, const SparseSolveSettings& s, PassTimer* timer) const {
+  check(s);
+  if (s.cellCount == 0) return;
+  const uint32_t cells = s.cellCount, pairs = s.pairCapacity;
+  stage(cmd, s, shared::kSparseInitCells, cells, timer);
+  stage(cmd, s, shared::kSparseMaxPairs, pairs, timer);
+  stage(cmd, s, shared::kSparseMeanPairs, pairs, timer);
+  stage(cmd, s, shared::kSparseRidgeCells, cells, timer);
+  stage(cmd, s, shared::kSparseSchurPairs, pairs, timer);
+  stage(cmd, s, shared::kSparsePivotCells, cells, timer);
+  stage(cmd, s, shared::kSparseAlphaPairs, pairs, timer);
+  stage(cmd, s, shared::kSparseFinishCells, cells, timer);
+  stage(cmd, s, shared::kSparseClearPairs, pairs, timer);
+}
+
+void GpuSparseSolver::recordRestart(VkCommandBuffer cmd, const SparseSolveSettings& s, PassTimer* timer) const {
+  check(s);
+  if (s.cellCount == 0) return;
+  stage(cmd, s, shared::kSparseRestartPairs, s.pairCapacity, timer);
+}
+
+}  // namespace mixtrace

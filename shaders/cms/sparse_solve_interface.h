@@ -1,0 +1,16 @@
+// The sparse CMS solve pass (cms/sparse_solve.comp): the per-triangle control variate's pair
+// statistics and the cells' BSDF rows in, alpha_t per pair and alpha_B, validity and sum of alpha
+// per cell out (shared/cms_sparse_solve.h). Pushed SparseSolveConstants. Declared once for the
+// shader and the host (host/cms/gpu_sparse_solver.cpp).
+#ifndef MIXTRACE_CMS_SPARSE_SOLVE_INTERFACE_H
+#define MIXTRACE_CMS_SPARSE_SOLVE_INTERFACE_H
+#include "shared/cms_layouts.h"
+#include "shared/cms_pair_state.h"
+#include "shared/cms_sparse_solve.h"
+#include "shared/cms_state.h"
+
+#define SPARSE_SOLVE_BUFFERS(X)                                                                      \
+  BUFFER_PAIR_KEYS(X) BUFFER_PAIR_STATS(X) BUFFER_PAIR_SAMPLES(X) BUFFER_PAIR_ALPHA(X)              \
+  BUFFER_CELL_STATS(X) BUFFER_CELL_SAMPLES(X) BUFFER_CELL_SOLUTION(X) BUFFER_SPARSE_SCRATCH(X)
+
+#endif
