@@ -84,23 +84,27 @@ void CpuCmsCells::addPairStatistic(uint32_t index, double value) {
   }
 }
 
-void CpuCmsCells::solveCell(uint32_t cell) {
+void CpuCmsCells::solveCell(uint32_t cell) { solveCell(cell, solveParams_); }
+
+void CpuCmsCells::solveCell(uint32_t cell, const shared::SolveParams& params) {
   const uint32_t statsStride = shared::cellStatsStride(L_);
   std::atomic<double>* stats = &stats_[size_t(cell) * statsStride];
   std::vector<double> snapshot(statsStride);
   for (uint32_t i = 0; i < statsStride; ++i) snapshot[i] = stats[i].load(std::memory_order_relaxed);
   float* out = &solution_[size_t(cell) * shared::cellSolutionStride(L_)];
   CellSolution s = solveCellReference(snapshot.data(), cellSamples_[cell].load(std::memory_order_relaxed), L_,
-                                      solveParams_, defaults_.data(), out + shared::solutionSelect(L_, 0));
+                                      params, defaults_.data(), out + shared::solutionSelect(L_, 0));
   for (uint32_t k = 0; k < L_; ++k) {
     for (uint32_t c = 0; c < 3; ++c) out[shared::solutionAlpha(L_, k, c)] = float(s.alpha[k][c]);
     out[shared::solutionSelect(L_, k)] = float(s.select[k]);
   }
-  for (uint32_t c = 0; c < 3; ++c) {
-    out[shared::solutionAlphaB(L_, c)] = float(s.alphaB[c]);
-    out[shared::solutionAlphaSum(L_, c)] = float(s.alphaSum[c]);
+  if (!s.keepControlVariate) {   // else the sparse solve's (solvePairs)
+    for (uint32_t c = 0; c < 3; ++c) {
+      out[shared::solutionAlphaB(L_, c)] = float(s.alphaB[c]);
+      out[shared::solutionAlphaSum(L_, c)] = float(s.alphaSum[c]);
+    }
+    out[shared::solutionValid(L_)] = s.valid ? 1.0f : 0.0f;
   }
-  out[shared::solutionValid(L_)] = s.valid ? 1.0f : 0.0f;
   if (s.resetStatistics) {
     for (uint32_t i = 0; i < statsStride; ++i) stats[i].store(0.0, std::memory_order_relaxed);
     cellSamples_[cell].store(0, std::memory_order_relaxed);
@@ -131,7 +135,8 @@ void CpuCmsCells::solvePairs() {
   params.ridge = double(solveParams_.ridge);
   const uint32_t statsStride = shared::cellStatsStride(L_);
   const uint32_t solutionStride = shared::cellSolutionStride(L_);
-  std::vector<float> kept(7);   // the three outputs step 2 must leave alone: alpha_B, valid, sum
+  shared::SolveParams keepControlVariate = solveParams_;
+  keepControlVariate.flags |= shared::kSolveKeepControlVariate;
   for (uint32_t cell = 0; cell < grid_.tableSize; ++cell) {
     if (keys_[cell].load(std::memory_order_relaxed) == 0) continue;
     const std::atomic<double>* stats = &stats_[size_t(cell) * statsStride];
@@ -162,18 +167,8 @@ void CpuCmsCells::solvePairs() {
     }
     out[shared::solutionValid(L_)] = s.valid ? 1.0f : 0.0f;
     // 2. The cluster solve: the selection c_k and its restarts as with per-cluster coefficients,
-    //    leaving the control variate of step 1 as it is.
-    for (uint32_t c = 0; c < 3; ++c) {
-      kept[c] = out[shared::solutionAlphaB(L_, c)];
-      kept[3 + c] = out[shared::solutionAlphaSum(L_, c)];
-    }
-    kept[6] = out[shared::solutionValid(L_)];
-    solveCell(cell);
-    for (uint32_t c = 0; c < 3; ++c) {
-      out[shared::solutionAlphaB(L_, c)] = kept[c];
-      out[shared::solutionAlphaSum(L_, c)] = kept[3 + c];
-    }
-    out[shared::solutionValid(L_)] = kept[6];
+    //    leaving the control variate of step 1 as it is (kSolveKeepControlVariate).
+    solveCell(cell, keepControlVariate);
   }
   // 3. Pairs of restarted cells restart too.
   restartPairs();

@@ -99,6 +99,7 @@ class CpuCmsCells {
 
  private:
   void solveCell(uint32_t cell);
+  void solveCell(uint32_t cell, const shared::SolveParams& params);
   // The per-technique solve sequence between iterations (docs/estimator.md §4): the sparse
   // double-precision solve of every claimed cell, the cluster solve for the selection, and the
   // restart of the pairs whose cell restarted.
