@@ -42,6 +42,8 @@ CpuCmsCells::CpuCmsCells(const CmsScene& cms, const Bounds& sceneBounds, const R
     techniquesMerged_ = t.merged();
     emitterCount_ = t.emitterCount;
     techniques_ = t.sources;
+    // Many more unknowns per cell than clusters: gather on (shared/cms_pair_state.h).
+    cellSampleCap_ = shared::kPairCellSampleCap;
     // Room for every (cell, technique) pair, within the largest table (docs/estimator.md §4).
     const uint64_t pairs = std::min<uint64_t>(uint64_t(grid_.tableSize) * techniqueCount_, 1ull << 21);
     pairCapacity_ = settings.pairTableSlots ? shared::pairTableCapacityFor((settings.pairTableSlots + 1) / 2)
@@ -133,6 +135,7 @@ void CpuCmsCells::solvePairs() {
   SparseSolveParams params;
   params.minCellSamples = solveParams_.minSamples;
   params.ridge = double(solveParams_.ridge);
+  params.minTechniqueSamples = shared::kPairMinSamples;
   const uint32_t statsStride = shared::cellStatsStride(L_);
   const uint32_t solutionStride = shared::cellSolutionStride(L_);
   shared::SolveParams keepControlVariate = solveParams_;

@@ -52,9 +52,10 @@ class CpuCmsCells {
   // Whether the vertices of the current sample pass add to the statistics (set per pass from the
   // training schedule, cms/training_schedule.h).
   void setGathering(bool gathers) { passGathers_ = gathers; }
-  // ... and whether `cell` still gathers: below shared::kCellSampleCap vertices since its reset.
+  // ... and whether `cell` still gathers: below shared::kCellSampleCap vertices since its reset
+  // (shared::kPairCellSampleCap with the per-technique control variate).
   bool gathering(uint32_t cell) const {
-    return passGathers_ && cellSamples_[cell].load(std::memory_order_relaxed) < shared::kCellSampleCap;
+    return passGathers_ && cellSamples_[cell].load(std::memory_order_relaxed) < cellSampleCap_;
   }
   // The statistics weight of a sample of a vertex in `cell` with path throughput `throughput` in
   // `pixel` (docs/estimator.md §5): shared/cms_layouts.h relativeSampleWeight, 1 without relative
@@ -111,6 +112,7 @@ class CpuCmsCells {
   bool controlVariate_;
   bool relativeWeighting_;
   bool passGathers_ = true;
+  uint32_t cellSampleCap_ = shared::kCellSampleCap;
   shared::SolveParams solveParams_{};
   std::vector<float> defaults_;
   std::vector<shared::ClusterGpu> clusters_;
