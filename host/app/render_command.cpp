@@ -114,6 +114,14 @@ RenderStats collectStats(const RenderOptions& o, const PreparedScene& prepared, 
   stats.cmsAtomics = counters.statisticsAtomics;
   stats.estimator = setup.estimator;
   stats.cmsGatheringSpp = counters.gatheringSamples;
+  stats.cmsCvTechniques = counters.cvTechniques;
+  stats.cmsTechniques = counters.techniques;
+  stats.cmsTechniquesMerged = counters.techniquesMerged;
+  stats.cmsPairTableCapacity = counters.pairTableCapacity;
+  stats.cmsPairsUsed = counters.pairsUsed;
+  stats.cmsPairSamples = counters.pairSamples;
+  stats.cmsPairRefusedSamples = counters.pairRefusedSamples;
+  stats.cmsPairBufferBytes = counters.pairBufferBytes;
   stats.passMs = renderer.passTimesMs();
   return stats;
 }

@@ -31,6 +31,12 @@ struct RenderSettings {
   bool floatAtomics = true;      // Vulkan: float atomics for the statistics where the device has them
   uint32_t trainSpp = 0;         // no solve after this many samples (0 = train through the first half)
   bool trainOnce = false;        // the paper's schedule: one solve after trainSpp (default 16) samples
+  // The control variate's coefficients: one per technique of cms/light_techniques.h (an emissive
+  // triangle, a group of them beyond the budget, or a punctual light), or one per light cluster
+  // (the former per-cluster control variate, kept for comparisons).
+  bool perTriangleCv = true;
+  uint32_t pairTableSlots = 0;   // the (cell, technique) pair table's slots; 0 = sized for the scene
+                                 // (testing aid: a tiny table forces refused pairs)
 };
 
 // The parameters of the per-cell CMS solve for these settings (both backends).
@@ -55,6 +61,16 @@ struct RenderCounters {
   uint64_t verticesWithoutCell = 0;   // CMS: vertices refused by a full table (they get no CV)
   std::string statisticsAtomics;      // CMS on Vulkan: "float" atomics or "cas" loops
   uint32_t gatheringSamples = 0;      // CMS: sample passes that gathered statistics
+  // The control variate's techniques (RenderSettings::perTriangleCv): "triangle" or "cluster"
+  // (empty: the method has no control variate), and with "triangle" the pair table's use.
+  std::string cvTechniques;
+  uint64_t techniques = 0;            // techniques (triangle: cms/light_techniques.h; cluster: clusters)
+  bool techniquesMerged = false;      // emitters merged into groups to fit --max-techniques
+  uint64_t pairTableCapacity = 0;     // slots of the (cell, technique) pair table
+  uint64_t pairsUsed = 0;             // slots claimed
+  uint64_t pairSamples = 0;           // light-technique samples that found or claimed their pair
+  uint64_t pairRefusedSamples = 0;    // ... whose pair the full table refused (alpha_t = 0: unbiased)
+  uint64_t pairBufferBytes = 0;       // memory of the pair buffers (keys, statistics, counts, alpha)
 };
 
 class Renderer {

@@ -18,7 +18,7 @@ CmsMethod cmsMethodFor(const std::string& method) {
 }
 
 CmsScene setUpClusters(const PreparedScene& scene, std::vector<shared::LightSelectionGpu>& selection,
-                       uint32_t maxClusters, LightSelection defaults) {
+                       uint32_t maxClusters, LightSelection defaults, uint32_t maxTechniques) {
   CmsScene cms;
   cms.clusters = buildLightClusters(scene, maxClusters, defaults);
   LightClusters& c = cms.clusters;
@@ -44,6 +44,7 @@ CmsScene setUpClusters(const PreparedScene& scene, std::vector<shared::LightSele
       cms.clusterLights[i].cdf = (i + 1 == cluster.firstLight + cluster.lightCount) ? 1.0f : cdf;
     }
   }
+  cms.techniques = buildLightTechniques(scene.lights, c, maxTechniques);
   return cms;
 }
 

@@ -6,6 +6,7 @@
 
 #include "cms/methods.h"
 #include "cms/light_clusters.h"
+#include "cms/light_techniques.h"
 #include "scene/prepared_scene.h"
 #include "shared/layouts.h"
 
@@ -25,12 +26,15 @@ CmsMethod cmsMethodFor(const std::string& method);
 struct CmsScene {
   LightClusters clusters;
   std::vector<shared::ClusterLightGpu> clusterLights;  // clusters' lights with in-cluster CDFs
+  LightTechniques techniques;   // the control variate's techniques (per triangle, cms/light_techniques.h)
 };
 
 // Clusters the scene's lights and records in the method's selection table (one entry per light,
-// scene/light_selection.h) each light's cluster and in-cluster pmf. The scene stays as it is.
+// scene/light_selection.h) each light's cluster and in-cluster pmf, and builds the control
+// variate's techniques within maxTechniques. The scene stays as it is.
 CmsScene setUpClusters(const PreparedScene& scene, std::vector<shared::LightSelectionGpu>& selection,
-                       uint32_t maxClusters, LightSelection defaults);
+                       uint32_t maxClusters, LightSelection defaults,
+                       uint32_t maxTechniques = kDefaultMaxTechniques);
 
 // Whether the method cms, on a scene with these clusters, is better run as plain MIS (pt-power's
 // estimator): with at most one cluster there is no selection to learn, and the control variate

@@ -22,6 +22,8 @@ struct MethodLights {
 
 // The tables of `method` on `scene`: the row's light selection and, where the row has clusters,
 // at most maxClusters of them with the row's selection as their defaults. Reads the scene only.
-MethodLights buildMethodLights(const PreparedScene& scene, const MethodInfo& method, uint32_t maxClusters);
+// maxTechniques bounds the control variate's techniques (cms/light_techniques.h).
+MethodLights buildMethodLights(const PreparedScene& scene, const MethodInfo& method, uint32_t maxClusters,
+                               uint32_t maxTechniques = kDefaultMaxTechniques);
 
 }  // namespace mixtrace

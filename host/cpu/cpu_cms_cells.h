@@ -25,6 +25,7 @@
 #include "backend/renderer.h"
 #include "shared/cluster_layout.h"
 #include "shared/cms_layouts.h"
+#include "shared/cms_pair_state.h"
 #include "shared/layouts.h"
 
 namespace mixtrace {
@@ -38,6 +39,11 @@ class CpuCmsCells {
   uint32_t clusterCount() const { return L_; }
   const CellGridSetup& grid() const { return grid_; }
   bool controlVariate() const { return controlVariate_; }
+  // Whether the control variate's coefficients are per technique (cms/light_techniques.h, kept in
+  // the (cell, technique) pair table), not per cluster.
+  bool pairTechniques() const { return pairTechniques_; }
+  uint32_t pairCapacity() const { return pairCapacity_; }
+  uint32_t emitterCount() const { return emitterCount_; }
 
   // Counts a vertex whose probe sequence in the cell table was full (shared/cms_cells.h
   // findOrInsertCell, on grid()): it uses no control variate and adds no statistics.
@@ -46,9 +52,10 @@ class CpuCmsCells {
   // Whether the vertices of the current sample pass add to the statistics (set per pass from the
   // training schedule, cms/training_schedule.h).
   void setGathering(bool gathers) { passGathers_ = gathers; }
-  // ... and whether `cell` still gathers: below shared::kCellSampleCap vertices since its reset.
+  // ... and whether `cell` still gathers: below shared::kCellSampleCap vertices since its reset
+  // (shared::kPairCellSampleCap with the per-technique control variate).
   bool gathering(uint32_t cell) const {
-    return passGathers_ && cellSamples_[cell].load(std::memory_order_relaxed) < shared::kCellSampleCap;
+    return passGathers_ && cellSamples_[cell].load(std::memory_order_relaxed) < cellSampleCap_;
   }
   // The statistics weight of a sample of a vertex in `cell` with path throughput `throughput` in
   // `pixel` (docs/estimator.md §5): shared/cms_layouts.h relativeSampleWeight, 1 without relative
@@ -64,6 +71,8 @@ class CpuCmsCells {
 
   uint64_t cellsUsed() const;
   uint64_t verticesWithoutCell() const { return verticesWithoutCell_.load(); }
+  // The pair table's report for the stats JSON (RenderCounters' cvTechniques ... pairBufferBytes).
+  void reportPairs(RenderCounters& counters) const;
 
   // For the accessor macros of the shared headers (cpu/cpu_kernel_access.h). addStatistic adds one
   // term of shared/cms_vertex_terms.h to a cell (a compare-exchange loop: workers add at once).
@@ -77,15 +86,33 @@ class CpuCmsCells {
   float clusterDefault(uint32_t k) const { return defaults_[k]; }
   const shared::ClusterGpu& cluster(uint32_t k) const { return clusters_[k]; }
   const shared::ClusterLightGpu& clusterLight(uint32_t i) const { return clusterLights_[i]; }
+  // The pair table's accessors (shared/cms_pair_terms.h), as the GPU binds them to PAIR_* buffers.
+  uint64_t pairKeyLoad(uint32_t slot) const { return pairKeys_[slot].load(std::memory_order_acquire); }
+  uint64_t pairKeyCompareSwap(uint32_t slot, uint64_t expected, uint64_t desired) {
+    pairKeys_[slot].compare_exchange_strong(expected, desired, std::memory_order_acq_rel);
+    return expected;
+  }
+  const shared::TechniqueRefGpu& technique(uint32_t source) const { return techniques_[source]; }
+  float pairAlpha(uint32_t i) const { return pairAlpha_[i]; }
+  void addPairStatistic(uint32_t index, double value);
+  void addPairSample(uint32_t slot) { pairSamples_[slot].fetch_add(1, std::memory_order_relaxed); }
+  void countPair(uint32_t counter) { pairCounters_[counter].fetch_add(1, std::memory_order_relaxed); }
 
  private:
   void solveCell(uint32_t cell);
+  void solveCell(uint32_t cell, const shared::SolveParams& params);
+  // The per-technique solve sequence between iterations (docs/estimator.md §4): the sparse
+  // double-precision solve of every claimed cell, the cluster solve for the selection, and the
+  // restart of the pairs whose cell restarted.
+  void solvePairs();
+  void restartPairs();
 
   uint32_t L_;
   CellGridSetup grid_;
   bool controlVariate_;
   bool relativeWeighting_;
   bool passGathers_ = true;
+  uint32_t cellSampleCap_ = shared::kCellSampleCap;
   shared::SolveParams solveParams_{};
   std::vector<float> defaults_;
   std::vector<shared::ClusterGpu> clusters_;
@@ -96,6 +123,19 @@ class CpuCmsCells {
   std::vector<float> solution_;                        // cellSolutionStride(L) per cell, as on the GPU
   std::vector<glm::vec3> pixelEstimate_;
   std::atomic<uint64_t> verticesWithoutCell_{0};
+
+  // The per-technique control variate (empty unless pairTechniques_).
+  bool pairTechniques_ = false;
+  uint32_t techniqueCount_ = 0;
+  bool techniquesMerged_ = false;
+  uint32_t emitterCount_ = 0;
+  uint32_t pairCapacity_ = 0;
+  std::vector<shared::TechniqueRefGpu> techniques_;     // per technique source
+  std::unique_ptr<std::atomic<uint64_t>[]> pairKeys_;   // 0 = empty slot; never freed
+  std::unique_ptr<std::atomic<double>[]> pairStats_;    // kPairStatsStride per slot
+  std::unique_ptr<std::atomic<uint32_t>[]> pairSamples_;
+  std::vector<float> pairAlpha_;                        // kPairAlphaStride per slot
+  std::atomic<uint64_t> pairCounters_[shared::kPairCounterSlots];
 };
 
 }  // namespace mixtrace

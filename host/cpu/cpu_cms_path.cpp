@@ -41,7 +41,8 @@ class CmsPath {
  public:
   CmsPath(const CmsPathContext& ctx, RenderCounters& counters)
       : ctx_(ctx), counters_(counters), cells_(*ctx.cells), L_(cells_.clusterCount()),
-        controlVariate_(cells_.controlVariate()) {
+        controlVariate_(cells_.controlVariate()), pairs_(cells_.pairTechniques()),
+        pairCapacity_(cells_.pairCapacity()) {
     grid_.origin = cells_.grid().origin;
     grid_.invCellSize = cells_.grid().invCellSize;
     grid_.tableSize = cells_.grid().tableSize;
@@ -92,10 +93,23 @@ class CmsPath {
     float pj;
     uint j = clusterOfBsdfHit(hit.triangle, le, from, sh.position, pj);
     float peff = bsdfSampleMixtureDensity(pending.cell, L_, j, pj, pending.pdf);
-    if (controlVariate_ && cellSolutionValid(pending.cell, L_))
+    const double w = cells_.statisticsWeight(pending.cell, pending.throughput, ctx_.pixel);
+    const bool cv = controlVariate_ && cellSolutionValid(pending.cell, L_);
+    if (pairs_) {
+      // Per technique: the hit's triangle's technique, when the hit is a light point at all.
+      uint slot = kNoPairSlot;
+      float pt = 0.0f;
+      if (j != kNoCell) {
+        uint source = techniqueSourceOfHit(hit.triangle);
+        pt = techniqueDensity(source, pj);
+        slot = pairSlotOfSample(pairCapacity_, pending.cell, source, w > 0.0);
+      }
+      if (cv) radiance_ -= pairControlVariateTerm(pending.throughput, pending.cell, L_, slot, pt, pending.pdf, peff);
+      if (j != kNoCell) addPairStatistics(slot, pt, pending.pdf, peff, le * pending.bsdfCos, w);
+    } else if (cv) {
       radiance_ -= controlVariateTerm(pending.throughput, pending.cell, L_, j, pj, pending.pdf, peff);
-    addSampleStatistics(pending.cell, L_, j, pj, pending.pdf, peff, le * pending.bsdfCos,
-                        cells_.statisticsWeight(pending.cell, pending.throughput, ctx_.pixel));
+    }
+    addSampleStatistics(pending.cell, L_, j, pj, pending.pdf, peff, le * pending.bsdfCos, w);
     return balanceWeight(pending.pdf, peff);
   }
 
@@ -145,9 +159,19 @@ class CmsPath {
     float pBSeen = visible ? pB : 0.0f;
     float peffSeen = lightSampleMixtureDensity(ls.pdf, pBSeen);
     if (!(cmsTerms && peffSeen > 0.0f)) return;
-    if (v.cv) radiance_ -= controlVariateTerm(v.beta, v.cell, L_, k, pk, pBSeen, peffSeen);
-    addSampleStatistics(v.cell, L_, k, pk, pBSeen, peffSeen, visible ? f : vec3(0.0f),
-                        cells_.statisticsWeight(v.cell, v.beta, ctx_.pixel));
+    const vec3 fSeen = visible ? f : vec3(0.0f);
+    const double w = cells_.statisticsWeight(v.cell, v.beta, ctx_.pixel);
+    if (pairs_) {
+      // Per technique: the sampled point's triangle (or punctual light), even when hidden or blocked.
+      uint source = techniqueSourceOfLightSample(ls, cells_.emitterCount());
+      float pt = techniqueDensity(source, pk);
+      uint slot = pairSlotOfSample(pairCapacity_, v.cell, source, w > 0.0);
+      if (v.cv) radiance_ -= pairControlVariateTerm(v.beta, v.cell, L_, slot, pt, pBSeen, peffSeen);
+      addPairStatistics(slot, pt, pBSeen, peffSeen, fSeen, w);
+    } else if (v.cv) {
+      radiance_ -= controlVariateTerm(v.beta, v.cell, L_, k, pk, pBSeen, peffSeen);
+    }
+    addSampleStatistics(v.cell, L_, k, pk, pBSeen, peffSeen, fSeen, w);
   }
 
   // One BSDF sample (shade.comp sampleBsdf): false when the path ends (a failed sample, settled at
@@ -186,6 +210,8 @@ class CmsPath {
   CpuCmsCells& cells_;
   const uint L_;
   const bool controlVariate_;
+  const bool pairs_;             // coefficients per technique (shared/cms_pair_terms.h), not per cluster
+  const uint32_t pairCapacity_;
   CellGrid grid_{};
   vec3 radiance_{0.0f};
 };

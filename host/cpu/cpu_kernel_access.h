@@ -22,7 +22,18 @@
 #define CMS_STAT_REAL double
 #define CMS_ADD_STAT(cell, index, value) (::mixtrace::boundCpuKernel().cms->addStatistic(cell, index, value))
 
+// The per-technique control variate's pair table (shared/cms_pair_terms.h), in double precision too.
+#define PAIR_KEY_LOAD(slot) (::mixtrace::boundCpuKernel().cms->pairKeyLoad(slot))
+#define PAIR_KEY_CAS(slot, expected, desired) \
+  (::mixtrace::boundCpuKernel().cms->pairKeyCompareSwap(slot, expected, desired))
+#define TECHNIQUE(source) (::mixtrace::boundCpuKernel().cms->technique(source))
+#define PAIR_ALPHA(i) (::mixtrace::boundCpuKernel().cms->pairAlpha(i))
+#define CMS_ADD_PAIR_STAT(index, value) (::mixtrace::boundCpuKernel().cms->addPairStatistic(index, value))
+#define CMS_ADD_PAIR_SAMPLE(slot) (::mixtrace::boundCpuKernel().cms->addPairSample(slot))
+#define CMS_COUNT_PAIR(counter) (::mixtrace::boundCpuKernel().cms->countPair(counter))
+
 #include "shared/cms_cells.h"
 #include "shared/cms_sampling.h"
 #include "shared/cms_vertex_terms.h"
+#include "shared/cms_pair_terms.h"
 #include "shared/pixel_estimate.h"

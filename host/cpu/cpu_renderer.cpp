@@ -225,6 +225,7 @@ RenderCounters CpuRenderer::counters() const {
     c.cellsUsed = cms_->cellsUsed();
     c.cellTableSize = cms_->grid().tableSize;
     c.verticesWithoutCell = cms_->verticesWithoutCell();
+    cms_->reportPairs(c);
   }
   return c;
 }

@@ -50,6 +50,18 @@ void writeStatsJson(const std::string& path, const RenderStats& s) {
     j["cms_cell_table_size"] = s.cmsCellTableSize;
     j["cms_vertices_without_cell"] = s.cmsVerticesWithoutCell;
     if (!s.cmsAtomics.empty()) j["cms_statistics_atomics"] = s.cmsAtomics;
+    if (!s.cmsCvTechniques.empty()) {
+      j["cms_cv_techniques"] = s.cmsCvTechniques;
+      j["cms_techniques"] = s.cmsTechniques;
+      j["cms_techniques_merged"] = s.cmsTechniquesMerged;
+    }
+    if (s.cmsCvTechniques == "triangle") {
+      j["cms_pair_table_capacity"] = s.cmsPairTableCapacity;
+      j["cms_pairs_used"] = s.cmsPairsUsed;
+      j["cms_pair_samples"] = s.cmsPairSamples;
+      j["cms_pair_refused_samples"] = s.cmsPairRefusedSamples;
+      j["cms_pair_buffer_bytes"] = s.cmsPairBufferBytes;
+    }
   }
   j["validation_errors"] = s.validationErrors;
   nlohmann::json passes = nlohmann::json::object();

@@ -25,6 +25,13 @@ struct RenderStats {
   bool cmsGridCellsAuto = false;  // chosen by --cells auto (cms/grid_resolution.h)
   uint32_t cmsGatheringSpp = 0;   // sample passes that gathered statistics (the training schedule)
   std::string cmsAtomics;   // how the statistics are added: "float" or "cas" (Vulkan)
+  // The control variate's techniques (cv, cms): "triangle" or "cluster", how many, whether
+  // triangles were merged to fit the budget, and with "triangle" the (cell, technique) pair table.
+  std::string cmsCvTechniques;
+  uint64_t cmsTechniques = 0;
+  bool cmsTechniquesMerged = false;
+  uint64_t cmsPairTableCapacity = 0, cmsPairsUsed = 0, cmsPairSamples = 0, cmsPairRefusedSamples = 0;
+  uint64_t cmsPairBufferBytes = 0;
   uint32_t validationErrors = 0;
   std::map<std::string, double> passMs;  // GPU time per pass (Vulkan timestamp queries)
 

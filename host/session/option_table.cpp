@@ -201,6 +201,20 @@ std::vector<OptionRow> samplingRows() {
     integer("--max-clusters", "N", 1, 32, "16", G::Sampling,
             "learned/cv/cms: light clusters, one technique each, {range}",
             [](D& d, const V& v) { d.render->maxClusters = int(v.integer); }),
+    choice("--cv-techniques", "triangle|cluster", "granularity", {"triangle", "cluster"},
+           r.perTriangleCv ? "triangle" : "cluster", G::Sampling,
+           "cv/cms: one control-variate coefficient per emissive triangle (and punctual light), or per\n"
+           "light cluster (the former per-cluster control variate, for comparisons)",
+           [](D& d, const V& v) { d.render->perTriangleCv = v.text == "triangle"; }),
+    integer("--max-techniques", "N", shared::kMaxClusters, 1 << 24, std::to_string(kDefaultMaxTechniques),
+            G::Sampling,
+            "cv/cms with --cv-techniques triangle: at most N control-variate techniques, {range}; beyond it\n"
+            "an area light's triangles merge into contiguous groups, and lights into their cluster at worst",
+            [](D& d, const V& v) { d.render->maxTechniques = int(v.integer); }),
+    integer("--pair-table-slots", "N", 0, 1 << 22, std::to_string(r.pairTableSlots), G::Sampling,
+            "cv/cms with --cv-techniques triangle: slots of the (cell, technique) pair table, rounded up to\n"
+            "a power of two, {range}; 0 = sized for the scene (testing aid: a tiny table refuses pairs)",
+            [](D& d, const V& v) { d.render->pairTableSlots = int(v.integer); }),
     withZeroWord(integer("--cells", "N", 1, 4096, "auto", G::Sampling,
                          "learned/cv/cms: cells along the scene's longest axis ({range}), times 6 normal "
                          "directions; auto (the default) makes a cell about 16x16 pixels of footprint "

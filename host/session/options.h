@@ -57,6 +57,9 @@ struct RenderOptions {
   int maxClusters;               // --max-clusters: CMS light clusters (techniques)
   int cells;                     // --cells: CMS cells along the longest scene axis; 0 = auto
                                  // (resolved by setUpMethod, cms/grid_resolution.h)
+  bool perTriangleCv;            // --cv-techniques triangle|cluster: control-variate granularity
+  int maxTechniques;             // --max-techniques: the control variate's technique budget
+  int pairTableSlots;            // --pair-table-slots: the pair table's size (0 = automatic; testing aid)
   bool relativeWeighting;        // --relative-weighting on|off: CMS statistics weighting
                                  // (docs/estimator.md §5)
   int trainSpp;                  // --train-spp N: no CMS solve after N spp (0 = no limit)

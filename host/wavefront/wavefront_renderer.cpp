@@ -262,6 +262,11 @@ RenderCounters WavefrontRenderer::counters() const {
     c.statisticsAtomics = casAtomics_ ? "cas" : "float";
     c.gatheringSamples = gatheringSamples_;
     for (uint64_t key : buffer(shared::BINDING_CELL_KEYS).downloadAll<uint64_t>()) c.cellsUsed += key != 0;
+    if (settings_.cms.controlVariate) {
+      // The per-technique control variate is not wired into the passes yet: one per cluster.
+      c.cvTechniques = "cluster";
+      c.techniques = clusterCount_;
+    }
   }
   return c;
 }

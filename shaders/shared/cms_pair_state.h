@@ -60,6 +60,17 @@ struct TechniqueRefGpu {
   float share;      // Q_t, in (0, 1]
 };
 
+// A cell of the per-technique control variate gathers far past kCellSampleCap (shared/cms_layouts.h):
+// its system has one unknown per technique the cell sees (a sphere light alone is 480 triangles),
+// so 4096 vertices leave a few samples per pair, and alpha_t from a handful of samples adds more
+// variance than it removes. Measured (CPU, paper Veach MIS 160x120, 64 spp, --cells 8, cv):
+// relMSE 0.0548 with no cap against 0.085 with the 4096 cap (both with 8 samples per pair).
+const uint kPairCellSampleCap = 1u << 20;
+
+// A pair's alpha_t is used from this many samples on (fewer: alpha_t = 0, host/cms/sparse_solve.h
+// minTechniqueSamples). Measured as above: 1 -> 0.0548, 8 -> 0.0506 (per-cluster cv: 0.0649).
+const uint kPairMinSamples = 8u;
+
 // PAIR_COUNTERS entries.
 const uint kPairCounterPairSamples = 0u;      // light-technique samples that found or claimed their pair
 const uint kPairCounterRefusedSamples = 1u;   // light-technique samples whose pair the table refused

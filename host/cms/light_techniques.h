@@ -1,0 +1,48 @@
+#pragma once
+// The control-variate techniques of controlled mixture sampling at the paper's granularity
+// (../shared/cms.md §2, docs/estimator.md §2): one technique per emissive triangle (EmitterGpu) of
+// an area light and one per punctual light, while the light clusters (cms/light_clusters.h) stay
+// the unit of selection. Device-free: both backends upload `sources` as the TECHNIQUES buffer
+// (shared/cms_pair_state.h), and the CPU reference reads it directly.
+//
+// A light sample's point, or a BSDF sample's hit, has a technique *source*: its emitter e, or
+// emitterCount + light for a punctual light. sources[source] = {technique t, share Q_t}, with Q_t
+// the probability, once t's cluster is chosen, of sampling inside t (the sum over t's emitters of
+// the light's pmf in its cluster times the emitter's pmf in its light). t's normalised density
+// is p_t(z) = p_k(z) / Q_t on its support.
+//
+// Budget: with more sources than maxTechniques, the emitters of each area light merge into groups
+// of `groupSize` contiguous emitters (the smallest group size that fits); when even one technique
+// per light does not fit, every cluster becomes one technique (the per-cluster control variate).
+// Any grouping keeps the estimator unbiased (techniques stay disjoint and normalised), so merging
+// costs variance only; `merged` says whether it happened.
+#include <cstdint>
+#include <vector>
+
+#include "cms/light_clusters.h"
+#include "scene/light_set.h"
+#include "shared/cms_pair_state.h"
+
+namespace mixtrace {
+
+// The default --max-techniques: one technique per triangle for 10,000 emissive triangles and more.
+constexpr uint32_t kDefaultMaxTechniques = 16384;
+
+// How the emitters were grouped.
+enum class TechniqueGrouping { PerTriangle, EmitterGroups, PerCluster };
+
+struct LightTechniques {
+  std::vector<shared::TechniqueRefGpu> sources;   // emitters, then punctual lights (by light index)
+  std::vector<uint32_t> clusterOf;                // per technique: the cluster holding it
+  uint32_t techniqueCount = 0;
+  uint32_t emitterCount = 0;                      // where the punctual lights' sources start
+  TechniqueGrouping grouping = TechniqueGrouping::PerTriangle;
+  uint32_t groupSize = 1;                         // emitters per technique with EmitterGroups
+  bool merged() const { return grouping != TechniqueGrouping::PerTriangle; }
+};
+
+// Throws mixtrace::Error when maxTechniques is below the number of clusters (it must hold one
+// technique per cluster, the coarsest grouping). An empty light set gives no techniques.
+LightTechniques buildLightTechniques(const LightSet& lights, const LightClusters& clusters, uint32_t maxTechniques);
+
+}  // namespace mixtrace
