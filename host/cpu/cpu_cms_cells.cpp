@@ -45,9 +45,7 @@ CpuCmsCells::CpuCmsCells(const CmsScene& cms, const Bounds& sceneBounds, const R
     // Many more unknowns per cell than clusters: gather on (shared/cms_pair_state.h).
     cellSampleCap_ = shared::kPairCellSampleCap;
     // Room for every (cell, technique) pair, within the largest table (docs/estimator.md §4).
-    const uint64_t pairs = std::min<uint64_t>(uint64_t(grid_.tableSize) * techniqueCount_, 1ull << 21);
-    pairCapacity_ = settings.pairTableSlots ? shared::pairTableCapacityFor((settings.pairTableSlots + 1) / 2)
-                                            : shared::pairTableCapacityFor(uint32_t(pairs));
+    pairCapacity_ = pairTableCapacity(settings.pairTableSlots, grid_.tableSize, techniqueCount_);
     pairKeys_.reset(new std::atomic<uint64_t>[pairCapacity_]);
     pairStats_.reset(new std::atomic<double>[size_t(pairCapacity_) * shared::kPairStatsStride]);
     pairSamples_.reset(new std::atomic<uint32_t>[pairCapacity_]);
