@@ -66,10 +66,11 @@ CONFIGS = {
 # The paper's protocol (docs/estimator.md section 8) at 320x240, so that it runs on lavapipe in
 # reasonable time (--width 640 --height 480 where time allows: the paper's size).
 PAPER_CONFIGS = {
-    "full": dict(width=320, height=240, max_depth=5, spp=128, ref_spp=4096, seeds=1,
+    "full": dict(width=320, height=240, max_depth=5, spp=128, ref_spp=4096, seeds=1, backend="vulkan",
                  scenes=["VeachMIS", "RGBSofa", "Bathroom", "ModernHall", "DiningRoom2"]),
     # Enough samples that the paper's one solve (after 16) happens and serves.
-    "quick": dict(width=32, height=24, max_depth=3, spp=24, ref_spp=64, seeds=1, scenes=["VeachMIS"]),
+    "quick": dict(width=32, height=24, max_depth=3, spp=24, ref_spp=64, seeds=1, backend="vulkan",
+                  scenes=["VeachMIS"]),
 }
 
 KNOB_HELP = {
@@ -266,7 +267,7 @@ def run_paper(args):
     cfg = dict(PAPER_CONFIGS["quick" if args.quick else "full"])
     if args.scenes:
         cfg["scenes"] = args.scenes.split(",")
-    for key in ("width", "height"):
+    for key in ("width", "height", "spp", "ref_spp", "backend"):
         if getattr(args, key):
             cfg[key] = getattr(args, key)
     args.out = args.out or (tempfile.mkdtemp(prefix="mixtrace-paper-quick-") if args.quick
@@ -302,6 +303,11 @@ def main():
     ap.add_argument("--paper", action="store_true", help="the paper's table on its converted scenes (bench/paper.py)")
     ap.add_argument("--width", type=int, help="--paper: image width (default 320)")
     ap.add_argument("--height", type=int, help="--paper: image height (default 240)")
+    ap.add_argument("--spp", type=int, help="--paper: samples per pixel at equal spp (default 128, the paper's)")
+    ap.add_argument("--ref-spp", type=int, help="--paper: samples per pixel of the references (default 4096)")
+    ap.add_argument("--backend", choices=["vulkan", "cpu"],
+                    help="--paper: the backend of the method renders (default vulkan; the CPU backend renders the "
+                         "same estimators, faster where Vulkan runs on lavapipe)")
     ap.add_argument("--report-only", action="store_true",
                     help="rewrite OUT/report.md from OUT/results.json without rendering (after a change of format)")
     args = ap.parse_args()
@@ -312,6 +318,10 @@ def main():
         with open(os.path.join(out, "report.md"), "w") as f:
             f.write(markdown(results))
         return 0
+    paper_only = [f"--{k.replace('_', '-')}" for k in ("width", "height", "spp", "ref_spp", "backend")
+                  if getattr(args, k)]
+    if paper_only and not args.paper:
+        ap.error(f"{', '.join(paper_only)}: only with --paper")
     if args.paper:
         return run_paper(args)
     cfg = dict(CONFIGS["quick" if args.quick else "full"])

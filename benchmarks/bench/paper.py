@@ -77,7 +77,7 @@ def run(suite, cfg, scenes):
             errs, ms = [], []
             for seed in range(1, cfg["seeds"] + 1):
                 out, s = suite.render(path, method, f"paper-spp-{label}-{seed}", cfg=cfg, spp=cfg["spp"], seed=seed,
-                                      extra=extra)
+                                      backend=cfg.get("backend", "vulkan"), extra=extra)
                 errs.append(suite.mx.rel_mse(out, ref))
                 ms.append(1000.0 * s["render_seconds"] / s["spp"])
             rows[label] = {"method": method, "relmse_spp": sum(errs) / len(errs), "ms_per_sample": sum(ms) / len(ms),
@@ -87,7 +87,7 @@ def run(suite, cfg, scenes):
             errs, spp = [], []
             for seed in range(1, cfg["seeds"] + 1):
                 out, s = suite.render(path, method, f"paper-time-{label}-{seed}", cfg=cfg, seconds=budget,
-                                      seed=100 + seed, extra=extra)
+                                      seed=100 + seed, backend=cfg.get("backend", "vulkan"), extra=extra)
                 errs.append(suite.mx.rel_mse(out, ref))
                 spp.append(s["spp"])
             rows[label]["relmse_time"] = sum(errs) / len(errs)
@@ -105,7 +105,8 @@ def markdown(paper, cfg):
     """The paper's table with ours beside it, then every variant's numbers per scene."""
     lines = [f"Images {cfg['width']}x{cfg['height']}, max depth {cfg['max_depth']}, {cfg['spp']} spp at equal "
              f"samples, equal time = pt-uniform's time for {cfg['spp']} spp, {cfg['seeds']} seed(s); references "
-             f"{cfg['ref_spp']} spp (CPU backend, pt-power). Gains are relMSE ratios against pt-uniform (higher is "
+             f"{cfg['ref_spp']} spp (CPU backend, pt-power); method renders on the "
+             f"{cfg.get('backend', 'vulkan')} backend. Gains are relMSE ratios against pt-uniform (higher is "
              "better). The published numbers are the paper's, at 640x480 with its own renderer.", "",
              "| scene | published: equal spp / equal time / overhead | cv, paper training | cv, ours | "
              "cms, ours | pt-bvh | overhead of cms (ours) |", "|---|---|---|---|---|---|---|"]

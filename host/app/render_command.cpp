@@ -109,6 +109,8 @@ RenderStats collectStats(const RenderOptions& o, const PreparedScene& prepared, 
   stats.cmsCellTableSize = counters.cellTableSize;
   stats.cmsVerticesWithoutCell = counters.verticesWithoutCell;
   stats.cmsClusters = uint32_t(setup.lights.cms.clusters.clusters.size());
+  stats.cmsGridCells = setup.settings.cells;
+  stats.cmsGridCellsAuto = setup.cellsChosen;
   stats.cmsAtomics = counters.statisticsAtomics;
   stats.estimator = setup.estimator;
   stats.cmsGatheringSpp = counters.gatheringSamples;

@@ -15,10 +15,13 @@ uint32_t floorPowerOfTwo(uint64_t n) {
 
 }  // namespace
 
+uint64_t cellTableSlotLimit(uint32_t clusters) {
+  return (64ull << 20) / (sizeof(float) * shared::cellStatsStride(clusters));
+}
+
 uint32_t cellTableSizeFor(uint32_t cells, uint32_t clusters) {
   uint64_t wanted = std::max<uint64_t>(4096, uint64_t(48) * cells * cells);
-  uint64_t limit = (64ull << 20) / (sizeof(float) * shared::cellStatsStride(clusters));
-  return floorPowerOfTwo(std::min(wanted * 2 - 1, limit));
+  return floorPowerOfTwo(std::min(wanted * 2 - 1, cellTableSlotLimit(clusters)));
 }
 
 CellGridSetup makeCellGrid(const Bounds& b, uint32_t cells, uint32_t clusters) {

@@ -26,4 +26,7 @@ CellGridSetup makeCellGrid(const Bounds& sceneBounds, uint32_t cells, uint32_t c
 // grid, a power of two.
 uint32_t cellTableSizeFor(uint32_t cells, uint32_t clusters);
 
+// The most slots the table may have with `clusters` clusters: its float statistics within 64 MiB.
+uint64_t cellTableSlotLimit(uint32_t clusters);
+
 }  // namespace mixtrace

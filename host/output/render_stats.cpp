@@ -44,6 +44,8 @@ void writeStatsJson(const std::string& path, const RenderStats& s) {
   if (s.cmsCellTableSize > 0) {
     j["cms_clusters"] = s.cmsClusters;
     j["cms_gathering_spp"] = s.cmsGatheringSpp;
+    j["cms_grid_cells"] = s.cmsGridCells;
+    j["cms_grid_cells_auto"] = s.cmsGridCellsAuto;
     j["cms_cells_used"] = s.cmsCellsUsed;
     j["cms_cell_table_size"] = s.cmsCellTableSize;
     j["cms_vertices_without_cell"] = s.cmsVerticesWithoutCell;

@@ -21,6 +21,8 @@ struct RenderStats {
   uint64_t nonFiniteSamples = 0;  // caught and dropped, never written to the image
   uint64_t cmsCellsUsed = 0, cmsCellTableSize = 0, cmsVerticesWithoutCell = 0;
   uint32_t cmsClusters = 0;
+  uint32_t cmsGridCells = 0;      // the grid's cells along the longest axis (--cells)
+  bool cmsGridCellsAuto = false;  // chosen by --cells auto (cms/grid_resolution.h)
   uint32_t cmsGatheringSpp = 0;   // sample passes that gathered statistics (the training schedule)
   std::string cmsAtomics;   // how the statistics are added: "float" or "cas" (Vulkan)
   // The control variate's techniques (cv, cms): "triangle" or "cluster", how many, whether

@@ -1,5 +1,6 @@
 #include "session/method_setup.h"
 
+#include "cms/grid_resolution.h"
 #include "cms/methods.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -31,6 +32,18 @@ MethodSetup setUpMethod(const PreparedScene& prepared, const RenderOptions& o, c
     info(plainMisNote(m.lights.cms));
     s.cms = CmsMethod{};
     m.estimator = kPlainMisMethod;
+  }
+  if (o.cells == 0 && s.cms.clusters) {
+    const GridResolution grid = autoGridResolution(prepared, makeCamera(prepared.scene, s.width, s.height),
+                                                   uint32_t(m.lights.cms.clusters.clusters.size()));
+    s.cells = grid.cells;
+    m.cellsChosen = true;
+    info("--cells auto: " + std::to_string(grid.cells) + " cells along the longest axis (" +
+         std::to_string(grid.primaryHits) + " of " + std::to_string(kFootprintRaysPerSide * kFootprintRaysPerSide) +
+         " primary rays hit; a cell covers about " + std::to_string(kCellEdgePixels) + "x" +
+         std::to_string(kCellEdgePixels) + " pixels)");
+  } else if (o.cells == 0) {
+    s.cells = kFallbackCells;  // no cells in this method: any valid value
   }
   return m;
 }

@@ -16,10 +16,12 @@ struct MethodSetup {
   RenderSettings settings;
   MethodLights lights;         // the selection table; the clusters when the method has them
   std::string estimator;       // what runs: the method, or pt-power where cms reduces to it
+  bool cellsChosen = false;    // settings.cells came from --cells auto (cms/grid_resolution.h)
 };
 
 // `method` overrides o.method (the viewer switches methods). Says so (info line) when cms reduces
-// to plain MIS on a scene with one light cluster. The scene is only read: every method shares it.
+// to plain MIS on a scene with one light cluster. Resolves --cells auto for the methods with cells
+// (both backends then key vertices to the same grid). The scene is only read: every method shares it.
 MethodSetup setUpMethod(const PreparedScene& prepared, const RenderOptions& o, const std::string& method);
 
 }  // namespace mixtrace

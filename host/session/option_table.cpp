@@ -108,6 +108,12 @@ OptionRow withDefaultNote(OptionRow row, std::string note) {
   return row;
 }
 
+// An Integer row that also takes `word`, stored as 0 ("choose for me").
+OptionRow withZeroWord(OptionRow row, const char* word) {
+  row.zeroWord = word;
+  return row;
+}
+
 OptionRow withUnit(OptionRow row, const char* unit) {
   row.unit = unit;
   return row;
@@ -209,9 +215,12 @@ std::vector<OptionRow> samplingRows() {
             "cv/cms with --cv-techniques triangle: slots of the (cell, technique) pair table, rounded up to\n"
             "a power of two, {range}; 0 = sized for the scene (testing aid: a tiny table refuses pairs)",
             [](D& d, const V& v) { d.render->pairTableSlots = int(v.integer); }),
-    integer("--cells", "N", 1, 4096, std::to_string(r.cells), G::Sampling,
-            "learned/cv/cms: {range} cells along the scene's longest axis, times 6 normal directions",
-            [](D& d, const V& v) { d.render->cells = int(v.integer); }),
+    withZeroWord(integer("--cells", "N", 1, 4096, "auto", G::Sampling,
+                         "learned/cv/cms: cells along the scene's longest axis ({range}), times 6 normal "
+                         "directions; auto (the default) makes a cell about 16x16 pixels of footprint "
+                         "where the camera's primary rays hit the scene, 4..256",
+                         [](D& d, const V& v) { d.render->cells = int(v.integer); }),
+                 "auto"),
     choice("--relative-weighting", "on|off", "setting", {"on", "off"}, onOff(r.relativeWeighting), G::Sampling,
            "learned/cv/cms: weight the cells' statistics by path throughput relative to the pixel",
            [](D& d, const V& v) { d.render->relativeWeighting = v.text == "on"; }),

@@ -58,6 +58,9 @@ struct OptionRow {
   long long minInteger = 0, maxInteger = 0;   // Integer: the accepted range
   double minNumber = 0.0, maxNumber = 0.0;    // Number: the accepted range (maxNumber may be inf)
   bool openRange = false;                     // Number: both ends excluded
+  // Integer: a word taken in place of the value 0, which the row's store reads as "choose for me"
+  // (--cells auto); nullptr when the option has none. 0 itself stays refused unless in range.
+  const char* zeroWord = nullptr;
   const char* unit = nullptr;                 // Number: what it counts ("seconds"), for messages
   const char* choiceNoun = nullptr;           // Choice: what a value is ("method"), for messages
   std::vector<std::string> choices;           // Choice: the values, in the order help lists them

@@ -73,9 +73,11 @@ bool parseVector(const std::string& value, std::array<double, 3>& v) {
 
 std::string rangeText(const OptionRow& row) {
   switch (row.kind) {
-    case ValueKind::Integer:
-      if (unbounded(row)) return std::string(row.placeholder) + " >= " + std::to_string(row.minInteger);
-      return std::to_string(row.minInteger) + ".." + std::to_string(row.maxInteger);
+    case ValueKind::Integer: {
+      const std::string word = row.zeroWord ? std::string("|") + row.zeroWord : "";
+      if (unbounded(row)) return std::string(row.placeholder) + " >= " + std::to_string(row.minInteger) + word;
+      return std::to_string(row.minInteger) + ".." + std::to_string(row.maxInteger) + word;
+    }
     case ValueKind::Number:
       if (std::isinf(row.maxNumber)) return "> " + numberText(row.minNumber);
       if (row.openRange)
@@ -89,9 +91,11 @@ std::string rangeText(const OptionRow& row) {
 std::string expectedValue(const OptionRow& row) {
   const std::string unit = row.unit ? std::string(" of ") + row.unit : "";
   switch (row.kind) {
-    case ValueKind::Integer:
-      if (unbounded(row)) return "an integer >= " + std::to_string(row.minInteger);
-      return "an integer in " + std::to_string(row.minInteger) + ".." + std::to_string(row.maxInteger);
+    case ValueKind::Integer: {
+      const std::string word = row.zeroWord ? std::string(" or ") + row.zeroWord : "";
+      if (unbounded(row)) return "an integer >= " + std::to_string(row.minInteger) + word;
+      return "an integer in " + std::to_string(row.minInteger) + ".." + std::to_string(row.maxInteger) + word;
+    }
     case ValueKind::Number:
       if (std::isinf(row.maxNumber)) return "a number" + unit + " > " + numberText(row.minNumber);
       if (row.openRange)
@@ -113,6 +117,10 @@ OptionValue parseOptionValue(const OptionRow& row, const std::string& value) {
     case ValueKind::Flag:
     case ValueKind::Text: break;
     case ValueKind::Integer:
+      if (row.zeroWord && value == row.zeroWord) {
+        parsed.integer = 0;
+        break;
+      }
       if (!strictInteger(value, parsed.integer) || parsed.integer < row.minInteger || parsed.integer > row.maxInteger)
         refuse(row, value);
       break;

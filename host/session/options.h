@@ -55,7 +55,8 @@ struct RenderOptions {
   bool generalPipelines = false; // --general-pipelines: no specialisation on scene features
   bool variance = false;         // --variance: also write per-pixel variance of the mean
   int maxClusters;               // --max-clusters: CMS light clusters (techniques)
-  int cells;                     // --cells: CMS cells along the longest scene axis
+  int cells;                     // --cells: CMS cells along the longest scene axis; 0 = auto
+                                 // (resolved by setUpMethod, cms/grid_resolution.h)
   bool perTriangleCv;            // --cv-techniques triangle|cluster: control-variate granularity
   int maxTechniques;             // --max-techniques: the control variate's technique budget
   int pairTableSlots;            // --pair-table-slots: the pair table's size (0 = automatic; testing aid)

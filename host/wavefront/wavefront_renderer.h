@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "cms/gpu_solver.h"
+#include "wavefront/passes/solve_pass.h"
 #include "cms/method_lights.h"
 #include "output/image.h"
 #include "wavefront/device_buffers.h"

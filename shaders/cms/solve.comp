@@ -4,7 +4,7 @@
 // the shade pass gathered and writes its control-variate coefficients and selection pmf (the maths
 // and its robustness rules: shared/cms_solve.h). One invocation per cell; the cells are spread
 // over a 2D grid of workgroups so that any cell count fits the dispatch limits
-// (host/cms/gpu_solver.cpp).
+// (host/wavefront/passes/solve_pass.cpp).
 #include "cms/solve_interface.h"
 #define PASS_BUFFERS SOLVE_BUFFERS
 #define PASS_CONSTANTS SolveParams

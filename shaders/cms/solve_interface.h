@@ -1,6 +1,6 @@
 // The CMS solve pass (cms/solve.comp), between training iterations: every cell's statistics in,
 // its control-variate coefficients and selection pmf out. Pushed SolveParams
-// (shared/cms_layouts.h). Declared once for the shader and the host (host/cms/gpu_solver.cpp).
+// (shared/cms_layouts.h). Declared once for the shader and the host (host/wavefront/passes/solve_pass.cpp).
 #ifndef MIXTRACE_CMS_SOLVE_INTERFACE_H
 #define MIXTRACE_CMS_SOLVE_INTERFACE_H
 #include "shared/cms_layouts.h"

@@ -4,7 +4,7 @@
 // The sparse per-cell solve of the per-triangle control variate (the stages, the maths and the
 // scratch layout: shared/cms_sparse_solve.h; the rules: host/cms/sparse_solve.h). One pipeline,
 // one dispatch per stage (STAGE): one invocation per cell or per pair-table slot, spread over a
-// 2D grid of workgroups so that any count fits the dispatch limits (host/cms/gpu_sparse_solver.cpp).
+// 2D grid of workgroups so that any count fits the dispatch limits (host/wavefront/passes/sparse_solve_pass.cpp).
 #include "cms/sparse_solve_interface.h"
 #define PASS_BUFFERS SPARSE_SOLVE_BUFFERS
 #define PASS_CONSTANTS SparseSolveConstants
@@ -104,9 +104,9 @@ void initCell(uint cell) {
 void ridgeCell(uint cell) {
   bool useB = (scratchFlags(cell) & kSparseFlagUseB) != 0u;
   float maxDiag = scratchFloat(cell, kSparseMaxDiagonal);
-  float invMax = maxDiag > 0.0 ? 1.0 / maxDiag : 1.0;
   float aBB = cellABB(cell);
-  float meanOverMax = (useB ? aBB * invMax : 0.0) + scratchFloat(cell, kSparseDiagonalSum);
+  // Divided, not multiplied by 1 / max: near FLT_MAX that reciprocal is denormal, which GPUs flush.
+  float meanOverMax = (useB ? aBB / maxDiag : 0.0) + scratchFloat(cell, kSparseDiagonalSum);
   float count = float(sparseScratch[scratchIndex(cell, kSparsePairsIn)] + (useB ? 1u : 0u));
   float ridge = (cmsIsFinite(pc.ridge) && pc.ridge > 0.0) ? pc.ridge : 0.0;
   float r = count > 0.0 ? (ridge * (meanOverMax / count)) * maxDiag : 0.0;
@@ -187,7 +187,7 @@ void pairStage(uint slot) {
     atomicMax(sparseScratch[scratchIndex(p.cell, kSparseMaxDiagonal)], floatBitsToUint(p.aTT));
     atomicAdd(sparseScratch[scratchIndex(p.cell, kSparsePairsIn)], 1u);
   } else if (STAGE == kSparseMeanPairs) {
-    if (p.usable) scratchAdd(p.cell, kSparseDiagonalSum, p.aTT * (1.0 / scratchFloat(p.cell, kSparseMaxDiagonal)));
+    if (p.usable) scratchAdd(p.cell, kSparseDiagonalSum, p.aTT / scratchFloat(p.cell, kSparseMaxDiagonal));
   } else if (STAGE == kSparseSchurPairs) {
     if (!p.usable || !((scratchFlags(p.cell) & kSparseFlagUseB) != 0u)) return;   // with B out l_t = 0
     float st, lt;

@@ -1,7 +1,7 @@
 // The sparse CMS solve pass (cms/sparse_solve.comp): the per-triangle control variate's pair
 // statistics and the cells' BSDF rows in, alpha_t per pair and alpha_B, validity and sum of alpha
 // per cell out (shared/cms_sparse_solve.h). Pushed SparseSolveConstants. Declared once for the
-// shader and the host (host/cms/gpu_sparse_solver.cpp).
+// shader and the host (host/wavefront/passes/sparse_solve_pass.cpp).
 #ifndef MIXTRACE_CMS_SPARSE_SOLVE_INTERFACE_H
 #define MIXTRACE_CMS_SPARSE_SOLVE_INTERFACE_H
 #include "shared/cms_layouts.h"

@@ -28,7 +28,7 @@
 //   kSparseClearPairs  pairs: PAIR_ALPHA = 0 for the pairs of a cell that is not valid, so a
 //                      reader never sees a coefficient its cell does not use (the double solve's
 //                      alpha of an invalid cell is 0 everywhere, too).
-// and, recorded apart after the per-cluster solve (host/cms/gpu_sparse_solver.h):
+// and, recorded apart after the per-cluster solve (host/wavefront/passes/sparse_solve_pass.h):
 //   kSparseRestartPairs pairs: the statistics and sample count of every pair whose cell holds 0
 //                      samples (the cluster solve restarted it: a new selection). Keys stay.
 // A slot whose key is empty, or names a cell >= cellCount, takes part in nothing. The sums are
@@ -42,7 +42,7 @@
 #include "shared/dialect.h"
 
 // The per-cell scratch, uints (floats as their bits), kSparseScratchStride per cell; owned and
-// sized by the solve (host/cms/gpu_sparse_solver.cpp).
+// sized by the solve (host/wavefront/passes/sparse_solve_pass.cpp).
 #define BUFFER_SPARSE_SCRATCH(X) \
   X(SPARSE_SCRATCH, sparseScratch, 43, READ_WRITE, uint, CELL_SCRATCH, "CMS sparse solve scratch")
 

@@ -167,6 +167,32 @@ TEST(DefaultMethod, ReducesToPlainMisOnlyWithOneCluster) {
   EXPECT_EQ(j["cms_clusters"].get<int>(), 1);
 }
 
+// The stats say which grid the cells were keyed to: --cells N as given, auto as chosen from the
+// footprint (cms/grid_resolution.h), the same on both backends.
+TEST(CellGrid, StatsReportTheResolutionUsed) {
+  fs::path dir = scratchDir("grid");
+  auto render = [&](const std::string& extra) {
+    fs::path stats = dir / "stats.json";
+    RunResult r = runMixtrace("render " + std::string(MIXTRACE_SOURCE_DIR) +
+                              "/scenes/veach_mis.gltf --method cms --width 64 --height 48 --spp 2 --no-png --out " +
+                              (dir / "x.exr").string() + " --stats " + stats.string() + " " + extra);
+    EXPECT_EQ(r.exitCode, 0) << r.stderrText;
+    return readJson(stats);
+  };
+  nlohmann::json j = render("--cells 21");
+  EXPECT_EQ(j["cms_grid_cells"].get<int>(), 21);
+  EXPECT_FALSE(j["cms_grid_cells_auto"].get<bool>());
+  const nlohmann::json vulkan = render("");
+  EXPECT_TRUE(vulkan["cms_grid_cells_auto"].get<bool>());
+  const int chosen = vulkan["cms_grid_cells"].get<int>();
+  EXPECT_GE(chosen, 4);
+  EXPECT_LE(chosen, 256);
+  EXPECT_EQ(render("--backend cpu")["cms_grid_cells"].get<int>(), chosen);
+  // Twice the image in each direction, about twice the cells.
+  j = render("--width 128 --height 96");
+  EXPECT_NEAR(j["cms_grid_cells"].get<double>() / chosen, 2.0, 0.25);
+}
+
 TEST(TimeBudget, StopsNearTheRequestedTime) {
   fs::path dir = scratchDir("time");
   auto start = std::chrono::steady_clock::now();

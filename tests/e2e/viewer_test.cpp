@@ -75,7 +75,8 @@ TEST(Viewer, ScriptedSessionUnderXvfb) {
             "\nkey v\nresize 400 300\nframes 2\nscreenshot " + shot("resized") +
             "\nkey p\nquit\n");
   const std::string scene = std::string(MIXTRACE_SOURCE_DIR) + "/scenes/veach_mis.gltf";
-  RunResult r = runMixtrace("view " + scene + " --width 64 --height 48 --validation --out " + (dir / "saved.exr").string() +
+  // --cells 16: at 64x48 auto would choose a coarser grid than the cell view's check was set for.
+  RunResult r = runMixtrace("view " + scene + " --width 64 --height 48 --cells 16 --validation --out " + (dir / "saved.exr").string() +
                                 " --script " + (dir / "script.txt").string(),
                             "xvfb-run -a -s '-screen 0 1024x768x24'", 300);
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;

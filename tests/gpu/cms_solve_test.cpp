@@ -1,4 +1,4 @@
-// The CMS per-cell solve as the GPU runs it (shaders/cms/solve.comp through host/cms/gpu_solver,
+// The CMS per-cell solve as the GPU runs it (shaders/cms/solve.comp through host/wavefront/passes/solve_pass,
 // on whatever Vulkan device is first: lavapipe here) fed synthetic cell statistics, held to the
 // independent double-precision solve (host/cms/reference_solve) and, where the exact answer is
 // known, to that: well-conditioned systems from simulated samples, singular, nearly singular and
@@ -20,7 +20,7 @@
 #include <gtest/gtest.h>
 
 #include "cms/cms_setup.h"
-#include "cms/gpu_solver.h"
+#include "wavefront/passes/solve_pass.h"
 #include "cms/method_lights.h"
 #include "cms/reference_solve.h"
 #include "wavefront/wavefront_renderer.h"

@@ -1,5 +1,5 @@
 // The sparse per-triangle control-variate solve as the GPU runs it (shaders/cms/sparse_solve.comp
-// through host/cms/gpu_sparse_solver, on the first Vulkan device: lavapipe here), held to the
+// through host/wavefront/passes/sparse_solve_pass, on the first Vulkan device: lavapipe here), held to the
 // double-precision solveSparseCell (host/cms/sparse_solve.h) on the same float statistics: random
 // cells of 1..200 pairs, the stability cases of the per-cluster solve (singular, zero rows,
 // condition 1e12, 1 and 1e8 samples, scales 1e-8..1e8, NaN/Inf inputs), a full table, 10,000
@@ -22,8 +22,8 @@
 
 #include <gtest/gtest.h>
 
-#include "cms/gpu_solver.h"
-#include "cms/gpu_sparse_solver.h"
+#include "wavefront/passes/solve_pass.h"
+#include "wavefront/passes/sparse_solve_pass.h"
 #include "cms/reference_solve.h"
 #include "cms/sparse_solve.h"
 #include "cms/sparse_statistics.h"
@@ -448,6 +448,9 @@ TEST_F(CmsSparseSolve, StabilityCasesMatchTheDoubleSolveAndStayFinite) {
   c.push_back(handCell(1.2e-38, Vec(1e-38), 1000, {{1.2e-38, 1e-39, 1e-38, 1e-38, 1e-38}, {3e38, 1e38, 3e38, 3e38, 3e38}}));
   c.push_back(handCell(1.0, Vec(1.0), 1000, {{2e-38, 0.0, 3e38, 3e38, 3e38}}));
   c.push_back(handCell(1.0, Vec(1.0), 1000, {{1e-10, 0.0, 1e21, 1e21, 1e21}}));
+  // The largest diagonal near FLT_MAX (its reciprocal is denormal): the ridge still counts it.
+  c.push_back(handCell(1.0, Vec(1.0), 1000, {{3e38, 1e19, 3e38, 1e38, 2e38}, {1.0, 0.1, 0.5, 0.5, 0.5}}));
+  c.push_back(handCell(3e38, Vec(3e38), 1000, {{3e38, 1e38, 1e38, 1e38, 1e38}, {2e38, 1e37, 1e38, 2e38, 3e38}}));
   pr.capacity = shared::pairTableCapacityFor(pairsOf(pr));
   pr.settings = cvSettings(2);
   Comparison cmp = compare(pr, solve(pr), 2e-4);

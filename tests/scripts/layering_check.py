@@ -22,7 +22,7 @@ LAYERS = {
     "gltf":    ["util", "scene"],
     "output":  ["util"],
     "compare": ["util", "output"],
-    "cms":     ["util", "vulkan", "scene"],
+    "cms":     ["util", "scene"],
     "backend": ["util", "output", "cms"],
     "wavefront": ["util", "vulkan", "scene", "output", "cms", "backend"],
     "cpu":     ["util", "scene", "output", "cms", "backend"],

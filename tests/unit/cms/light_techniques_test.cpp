@@ -198,13 +198,18 @@ TEST(LightTechniques, MergesContiguousEmitterGroupsUnderBudget) {
   EXPECT_THROW(buildLightTechniques(scene.lights, two, 1), Error);
 }
 
-TEST(LightTechniques, TenThousandTrianglesFitTheDefaultBudget) {
+TEST(LightTechniques, TenThousandTrianglesOneEachOrMergedUnderTheDefaultBudget) {
   PreparedScene scene = stripsAndPoints({10000}, 0);
   LightClusters lc = buildLightClusters(scene, 16, LightSelection::Power);
-  LightTechniques t = buildLightTechniques(scene.lights, lc, kDefaultMaxTechniques);
-  expectValidTechniques(scene, lc, t, kDefaultMaxTechniques);
+  LightTechniques t = buildLightTechniques(scene.lights, lc, 16384);
+  expectValidTechniques(scene, lc, t, 16384);
   EXPECT_EQ(t.techniqueCount, 10000u);
   EXPECT_FALSE(t.merged());
+  LightTechniques merged = buildLightTechniques(scene.lights, lc, kDefaultMaxTechniques);
+  expectValidTechniques(scene, lc, merged, kDefaultMaxTechniques);
+  EXPECT_TRUE(merged.merged());
+  EXPECT_LE(merged.techniqueCount, kDefaultMaxTechniques);
+  EXPECT_GT(merged.techniqueCount, kDefaultMaxTechniques / 2);
   // The pair table for them stays within lavapipe's 128 MiB per storage buffer.
   uint32_t capacity = shared::pairTableCapacityFor(1u << 21);
   EXPECT_LE(uint64_t(capacity) * shared::kPairStatsBytes, 128ull << 20);

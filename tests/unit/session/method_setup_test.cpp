@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "cms/grid_resolution.h"
 #include "cms/methods.h"
 #include "cpu/cpu_renderer.h"
 #include "scene/light_selection.h"
@@ -73,6 +74,27 @@ TEST(MethodSetup, EveryMethodSetsUpOnOnePreparedSceneAndBuildsNoBvh) {
   EXPECT_TRUE(sameBytes(prepared.lights.lights, untouched.lights.lights)) << "a method's set-up rewrote the lights";
   EXPECT_TRUE(sameBytes(prepared.lights.emitters, untouched.lights.emitters));
   EXPECT_TRUE(sameBytes(prepared.shading, untouched.shading));
+}
+
+// --cells N is N for every method with cells; auto is the rule's answer for this scene and image,
+// the same for every such method (both backends get it from here).
+TEST(MethodSetup, CellsAreGivenOrChosenByTheFootprintRule) {
+  const PreparedScene prepared =
+      prepareScene(loadSceneForRendering(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/veach_mis.gltf", smallRender()));
+  for (const char* method : {"learned", "cv", "cms"}) {
+    SCOPED_TRACE(method);
+    for (const char* n : {"3", "16", "100"}) {
+      const char* argv[] = {"mixtrace", "render", "--width", "160", "--height", "120", "--cells", n};
+      const MethodSetup given = setUpMethod(prepared, parseCommandLine(int(std::size(argv)), argv).render, method);
+      EXPECT_EQ(given.settings.cells, uint32_t(std::stoi(n)));
+      EXPECT_FALSE(given.cellsChosen);
+    }
+    const char* argv[] = {"mixtrace", "render", "--width", "160", "--height", "120"};
+    const MethodSetup chosen = setUpMethod(prepared, parseCommandLine(int(std::size(argv)), argv).render, method);
+    EXPECT_TRUE(chosen.cellsChosen);
+    const uint32_t clusters = uint32_t(chosen.lights.cms.clusters.clusters.size());
+    EXPECT_EQ(chosen.settings.cells, autoGridResolution(prepared, makeCamera(prepared.scene, 160, 120), clusters).cells);
+  }
 }
 
 }  // namespace

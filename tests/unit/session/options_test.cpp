@@ -72,6 +72,17 @@ TEST(Options, TrainingLengthAndErrorMap) {
   EXPECT_EQ(parse({"compare", "a.exr", "b.exr", "--error-only", "--error-map", "e.pfm"}).compare.errorMap, "e.pfm");
 }
 
+// --cells takes a count, kept as given, or the word auto (stored as 0); 0 itself is no count.
+TEST(Options, CellsTakeACountOrAuto) {
+  EXPECT_EQ(parse({"render", "--cells", "32"}).render.cells, 32);
+  EXPECT_EQ(parse({"render", "--cells=16"}).render.cells, 16);
+  EXPECT_EQ(parse({"render", "--cells", "auto"}).render.cells, 0);
+  EXPECT_EQ(parse({"render"}).render.cells, 0);
+  expectOneLineMentioning(errorOf({"render", "--cells", "0"}), "or auto");
+  expectOneLineMentioning(errorOf({"render", "--cells", "Auto"}), "--cells");
+  expectOneLineMentioning(errorOf({"render", "--cells", "5000"}), "1..4096");
+}
+
 TEST(Options, RelativeWeightingOnOff) {
   EXPECT_FALSE(parse({"render", "--relative-weighting", "off"}).render.relativeWeighting);
   EXPECT_TRUE(parse({"render", "--relative-weighting=on"}).render.relativeWeighting);
@@ -473,7 +484,10 @@ TEST(OptionTable, DefaultsComeFromTheTableAndMatchTheRenderer) {
   EXPECT_EQ(uint32_t(o.height), s.height);
   EXPECT_EQ(uint32_t(o.maxDepth), s.maxDepth);
   EXPECT_EQ(o.seed, s.seed);
-  EXPECT_EQ(uint32_t(o.cells), s.cells);
+  // --cells defaults to auto (0 here), which setUpMethod resolves (cms/grid_resolution.h); a
+  // RenderSettings always holds a resolution.
+  EXPECT_EQ(o.cells, 0);
+  EXPECT_GE(s.cells, 1u);
   EXPECT_EQ(o.relativeWeighting, s.relativeWeighting);
   EXPECT_EQ(o.floatAtomics, s.floatAtomics);
   EXPECT_EQ(uint32_t(o.trainSpp), s.trainSpp);

@@ -1,4 +1,4 @@
-#include "cms/gpu_solver.h"
+#include "wavefront/passes/solve_pass.h"
 
 #include <algorithm>
 #include <string>

@@ -9,9 +9,10 @@
 //
 // Between iterations the caller records, in this order:
 //   1. record():        the sparse solve (writes the control variate of every cell);
-//   2. CellSolver::record() with shared::kSolveKeepControlVariate (and without
-//      kSolveControlVariate's alpha_B: the flag leaves the three slots above as step 1 wrote them):
-//      selection, and the restart of a cell whose selection changed (CELL_SAMPLES = 0);
+//   2. CellSolver::record() with shared::kSolveKeepControlVariate (it leaves the three solution
+//      slots above as step 1 wrote them): selection, and the restart of a cell whose selection
+//      changed (its statistics and CELL_SAMPLES = 0). Step 1 must come first: it reads the cell's
+//      A_BB, b_B and CELL_SAMPLES before this step may reset them;
 //   3. recordRestart(): zeroes the pair statistics and sample counts of every restarted cell.
 // Owns its pipelines (one per stage), their descriptor sets and the per-cell scratch (binding 43).
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "cms/gpu_sparse_solver.h"
+#include "wavefront/passes/sparse_solve_pass.h"
 
 #include <algorithm>
 #include <string>
