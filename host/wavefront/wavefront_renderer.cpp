@@ -5,12 +5,12 @@
 #include <cstddef>
 
 #include "cms/cell_grid.h"
-#include "cms/gpu_sparse_solver.h"
 #include "shared/bindings.h"
 #include "shared/film.h"
 #include "util/error.h"
 #include "vulkan/check.h"
 #include "vulkan/context.h"
+#include "wavefront/passes/sparse_solve_pass.h"
 
 namespace mixtrace {
 namespace {
