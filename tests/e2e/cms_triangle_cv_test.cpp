@@ -5,12 +5,14 @@
 //     on Vulkan with zero validation errors;
 //   - a pair table far too small for the scene (--pair-table-slots) refuses pairs: the refused
 //     samples are counted in the stats JSON and the image still agrees (alpha_t = 0 is unbiased);
-//   - Vulkan triangle and CPU triangle estimate the same image (independent seeds);
+//   - Vulkan triangle and CPU triangle with the same seed render the same image per pixel;
 //   - the stats JSON says which granularity ran, how many techniques, whether they were merged
 //     (--max-techniques) and what the pair table holds;
 //   - on the paper's Veach MIS (four spheres of 480 triangles each, half of each facing away from
 //     any point) the per-triangle CV beats the per-cluster one at equal samples: the point of
 //     issue 13.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <tuple>
@@ -104,24 +106,29 @@ TEST_P(TriangleCvPairTable, RefusedPairsAreCountedAndStayUnbiased) {
 INSTANTIATE_TEST_SUITE_P(Backends, TriangleCvPairTable, ::testing::Values("cpu", "vulkan"),
                          [](const auto& info) { return info.param; });
 
-// Vulkan triangle against CPU triangle, independent seeds, whole training schedule: the two
-// backends' per-triangle control variates estimate the same image (per-pixel test), with the same
-// techniques and pair table. (Same seed gives the same paths only under the defaults:
-// cms_cpu_reference_test; after a solve float and double statistics part ways.)
+// Vulkan triangle against CPU triangle with the same seed, whole training schedule: the same random
+// numbers, cells, pairs and solves on both (the GPU's float statistics and solve against the CPU's
+// double ones), so the images match per pixel up to float rounding, far tighter than a statistical
+// test could tell (measured: relMSE 3.5e-13 between the two at seed 2). A pair term paid at another
+// place, a wrong p_t or a solve out of order shows up as channels that differ.
 TEST(TriangleCvBackends, VulkanAgreesWithTheCpuReference) {
   fs::path dir = scratchDir("tricv-backends");
   const std::string scene = sceneFile("scenes/veach_mis.gltf");
   const std::string size =
       byTestLevel<std::string>("--width 48 --height 36 --spp 512", "--width 128 --height 96 --spp 2048") + " --cells 8";
-  int seed = 2;
   for (const char* method : {"cv", "cms"}) {
-    const std::string args = size + " --method " + method + " --cv-techniques triangle --seed ";
-    RenderWithStats cpu = renderOn("cpu", scene, args + std::to_string(seed++), dir / (std::string(method) + "-cpu.exr"));
-    RenderWithStats gpu =
-        renderOn("vulkan", scene, args + std::to_string(seed++), dir / (std::string(method) + "-gpu.exr"));
+    const std::string args = size + " --method " + method + " --cv-techniques triangle --seed 2";
+    RenderWithStats cpu = renderOn("cpu", scene, args, dir / (std::string(method) + "-cpu.exr"));
+    RenderWithStats gpu = renderOn("vulkan", scene, args, dir / (std::string(method) + "-gpu.exr"));
     ASSERT_FALSE(cpu.mean.rgb.empty() || gpu.mean.rgb.empty()) << method;
-    ComparisonResult c = compareImages(cpu.mean, cpu.variance, gpu.mean, gpu.variance);
-    EXPECT_TRUE(c.agree) << method << " CPU vs Vulkan: " << c.summary();
+    ASSERT_EQ(cpu.mean.rgb.size(), gpu.mean.rgb.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < gpu.mean.rgb.size(); ++i)
+      if (std::abs(gpu.mean.rgb[i] - cpu.mean.rgb[i]) > 1e-3f * std::max(1e-2f, std::abs(cpu.mean.rgb[i]))) ++differing;
+    EXPECT_LE(differing, gpu.mean.rgb.size() / 200) << method << ": " << differing << " of " << gpu.mean.rgb.size()
+                                                    << " channels differ";
+    EXPECT_EQ(cpu.stats["cms_pairs_used"], gpu.stats["cms_pairs_used"]) << method;
+    EXPECT_EQ(cpu.stats["cms_pair_samples"], gpu.stats["cms_pair_samples"]) << method;
     EXPECT_EQ(gpu.stats["cms_cv_techniques"], "triangle") << method;
     for (const char* field : {"cms_techniques", "cms_techniques_merged", "cms_pair_table_capacity"})
       EXPECT_EQ(cpu.stats[field], gpu.stats[field]) << method << " " << field;
