@@ -13,6 +13,7 @@
 #define MIXTRACE_SHARED_CMS_CELLS_H
 #include "shared/cms_layouts.h"
 #include "shared/dialect.h"
+#include "shared/hash64.h"
 SHARED_BEGIN_WITH_BUFFERS
 
 const uint kCellProbes = 16u;
@@ -53,15 +54,8 @@ SHARED_FN uint64_t cellKey(CellGrid g, vec3 p, vec3 n, uint material) {
   return key;
 }
 
-// A 64-bit to 32-bit mix (the finaliser of MurmurHash3's 64-bit variant, folded).
-SHARED_FN uint hashCellKey(uint64_t key) {
-  key ^= key >> 33;
-  key *= uint64_t(0xff51afd7ed558ccdUL);
-  key ^= key >> 33;
-  key *= uint64_t(0xc4ceb9fe1a85ec53UL);
-  key ^= key >> 33;
-  return uint(key) ^ uint(key >> 32);
-}
+// The cell table's hash of a key (shared/hash64.h).
+SHARED_FN uint hashCellKey(uint64_t key) { return hash64To32(key); }
 
 // The slot of the cell holding (p, n, material): found, or claimed; kNoCell when the probe
 // sequence is full.

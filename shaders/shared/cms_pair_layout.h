@@ -4,6 +4,7 @@
 #ifndef MIXTRACE_SHARED_CMS_PAIR_LAYOUT_H
 #define MIXTRACE_SHARED_CMS_PAIR_LAYOUT_H
 #include "shared/dialect.h"
+#include "shared/hash64.h"
 SHARED_BEGIN
 
 // The slot of a pair the table refused (or of a vertex that has no cell).
@@ -55,16 +56,9 @@ SHARED_FN uint64_t pairKey(uint cell, uint technique) {
 SHARED_FN uint pairKeyCell(uint64_t key) { return uint(key >> 32) - 1u; }
 SHARED_FN uint pairKeyTechnique(uint64_t key) { return uint(key); }
 
-// A 64-bit to 32-bit mix (the finaliser of MurmurHash3's 64-bit variant, folded): consecutive
-// techniques of one cell, and one technique in neighbouring cells, land far apart.
-SHARED_FN uint hashPairKey(uint64_t key) {
-  key ^= key >> 33;
-  key *= uint64_t(0xff51afd7ed558ccdUL);
-  key ^= key >> 33;
-  key *= uint64_t(0xc4ceb9fe1a85ec53UL);
-  key ^= key >> 33;
-  return uint(key) ^ uint(key >> 32);
-}
+// The pair table's hash of a key (shared/hash64.h): consecutive techniques of one cell, and one
+// technique in neighbouring cells, land far apart.
+SHARED_FN uint hashPairKey(uint64_t key) { return hash64To32(key); }
 
 SHARED_FN uint pairProbeBound(uint capacity) { return min(kPairProbes, capacity); }
 
