@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "shared/cms_pair_layout.h"
 #include "util/error.h"
 
 namespace mixtrace {
@@ -95,6 +96,12 @@ LightTechniques buildLightTechniques(const LightSet& lights, const LightClusters
     t.sources[s].share = q > 0.0 ? float(std::min(q, 1.0)) : 1.0f;
   }
   return t;
+}
+
+uint32_t pairTableCapacity(uint32_t requestedSlots, uint32_t cellSlots, uint32_t techniqueCount) {
+  if (requestedSlots) return shared::pairTableCapacityFor((requestedSlots + 1) / 2);
+  const uint64_t pairs = std::min<uint64_t>(uint64_t(cellSlots) * techniqueCount, 1ull << 21);
+  return shared::pairTableCapacityFor(uint32_t(pairs));
 }
 
 }  // namespace mixtrace

@@ -52,4 +52,9 @@ struct LightTechniques {
 // technique per cluster, the coarsest grouping). An empty light set gives no techniques.
 LightTechniques buildLightTechniques(const LightSet& lights, const LightClusters& clusters, uint32_t maxTechniques);
 
+// The (cell, technique) pair table's capacity, one rule for both backends: room for every pair of
+// `cellSlots` cells and `techniqueCount` techniques, within 2^21 pairs (docs/estimator.md §4), or
+// `requestedSlots` rounded as the table rounds (--pair-table-slots, a testing aid; 0: automatic).
+uint32_t pairTableCapacity(uint32_t requestedSlots, uint32_t cellSlots, uint32_t techniqueCount);
+
 }  // namespace mixtrace

@@ -45,13 +45,12 @@ CpuCmsCells::CpuCmsCells(const CmsScene& cms, const Bounds& sceneBounds, const R
     // Many more unknowns per cell than clusters: gather on (shared/cms_pair_state.h).
     cellSampleCap_ = shared::kPairCellSampleCap;
     // Room for every (cell, technique) pair, within the largest table (docs/estimator.md §4).
-    const uint64_t pairs = std::min<uint64_t>(uint64_t(grid_.tableSize) * techniqueCount_, 1ull << 21);
-    pairCapacity_ = settings.pairTableSlots ? shared::pairTableCapacityFor((settings.pairTableSlots + 1) / 2)
-                                            : shared::pairTableCapacityFor(uint32_t(pairs));
+    pairCapacity_ = pairTableCapacity(settings.pairTableSlots, grid_.tableSize, techniqueCount_);
     pairKeys_.reset(new std::atomic<uint64_t>[pairCapacity_]);
     pairStats_.reset(new std::atomic<double>[size_t(pairCapacity_) * shared::kPairStatsStride]);
     pairSamples_.reset(new std::atomic<uint32_t>[pairCapacity_]);
     pairAlpha_.assign(size_t(pairCapacity_) * shared::kPairAlphaStride, 0.0f);   // no coefficients yet
+    pairOccupied_.reset(new uint32_t[pairCapacity_]);
     for (uint32_t i = 0; i < pairCapacity_; ++i) {
       pairKeys_[i].store(0, std::memory_order_relaxed);
       pairSamples_[i].store(0, std::memory_order_relaxed);
@@ -128,10 +127,8 @@ void CpuCmsCells::solvePairs() {
   // 1. The sparse solve (cms/sparse_solve.h) of every claimed cell from its A_BB, b_B, sample
   //    count and its pairs: alpha_t per pair, and the cell's alpha_B, validity and sum of alpha.
   std::unordered_map<uint32_t, std::vector<uint32_t>> slotsOfCell;
-  for (uint32_t slot = 0; slot < pairCapacity_; ++slot) {
-    const uint64_t key = pairKeys_[slot].load(std::memory_order_relaxed);
-    if (key != 0) slotsOfCell[shared::pairKeyCell(key)].push_back(slot);
-  }
+  for (uint32_t slot : occupiedSlotsInOrder())
+    slotsOfCell[shared::pairKeyCell(pairKeys_[slot].load(std::memory_order_relaxed))].push_back(slot);
   SparseSolveParams params;
   params.minCellSamples = solveParams_.minSamples;
   params.ridge = double(solveParams_.ridge);
@@ -177,10 +174,20 @@ void CpuCmsCells::solvePairs() {
   restartPairs();
 }
 
+std::vector<uint32_t> CpuCmsCells::occupiedSlotsInOrder() const {
+  // In slot order, as a scan of the table visits them: a cell's pairs reach the double solve in
+  // an order that does not depend on which thread claimed a slot first (deterministic sums).
+  std::vector<uint32_t> slots(pairOccupied_.get(), pairOccupied_.get() + pairOccupiedCount_.load());
+  std::sort(slots.begin(), slots.end());
+  return slots;
+}
+
 void CpuCmsCells::restartPairs() {
-  for (uint32_t slot = 0; slot < pairCapacity_; ++slot) {
+  const uint32_t occupied = pairOccupiedCount_.load();
+  for (uint32_t i = 0; i < occupied; ++i) {
+    const uint32_t slot = pairOccupied_[i];
     const uint64_t key = pairKeys_[slot].load(std::memory_order_relaxed);
-    if (key == 0 || cellSamples_[shared::pairKeyCell(key)].load(std::memory_order_relaxed) != 0) continue;
+    if (cellSamples_[shared::pairKeyCell(key)].load(std::memory_order_relaxed) != 0) continue;
     for (uint32_t i = 0; i < shared::kPairStatsStride; ++i)
       pairStats_[size_t(slot) * shared::kPairStatsStride + i].store(0.0, std::memory_order_relaxed);
     pairSamples_[slot].store(0, std::memory_order_relaxed);
@@ -194,14 +201,13 @@ void CpuCmsCells::reportPairs(RenderCounters& counters) const {
   counters.techniquesMerged = techniquesMerged_;
   if (!pairTechniques_) return;
   counters.pairTableCapacity = pairCapacity_;
-  uint64_t used = 0;
-  for (uint32_t i = 0; i < pairCapacity_; ++i) used += pairKeys_[i].load(std::memory_order_relaxed) != 0;
-  counters.pairsUsed = used;
+  counters.pairsUsed = pairOccupiedCount_.load();
   counters.pairSamples = pairCounters_[shared::kPairCounterPairSamples].load();
   counters.pairRefusedSamples = pairCounters_[shared::kPairCounterRefusedSamples].load();
   // As the GPU lays them out (shared/cms_pair_layout.h), plus alpha: the CPU's statistics are doubles.
   counters.pairBufferBytes = uint64_t(pairCapacity_) * (shared::kPairKeyBytes + 8u * shared::kPairStatsStride +
-                                                        shared::kPairCountBytes + 4u * shared::kPairAlphaStride);
+                                                        shared::kPairCountBytes + 4u * shared::kPairAlphaStride +
+                                                        4u /* the occupied list */);
 }
 
 void CpuCmsCells::refreshPixelEstimate(const std::vector<glm::vec3>& filmMean, uint32_t width, uint32_t height) {

@@ -95,6 +95,7 @@ class CpuCmsCells {
   const shared::TechniqueRefGpu& technique(uint32_t source) const { return techniques_[source]; }
   float pairAlpha(uint32_t i) const { return pairAlpha_[i]; }
   void addPairStatistic(uint32_t index, double value);
+  void pairSlotClaimed(uint32_t slot) { pairOccupied_[pairOccupiedCount_.fetch_add(1, std::memory_order_relaxed)] = slot; }
   void addPairSample(uint32_t slot) { pairSamples_[slot].fetch_add(1, std::memory_order_relaxed); }
   void countPair(uint32_t counter) { pairCounters_[counter].fetch_add(1, std::memory_order_relaxed); }
 
@@ -135,6 +136,12 @@ class CpuCmsCells {
   std::unique_ptr<std::atomic<double>[]> pairStats_;    // kPairStatsStride per slot
   std::unique_ptr<std::atomic<uint32_t>[]> pairSamples_;
   std::vector<float> pairAlpha_;                        // kPairAlphaStride per slot
+  // The claimed slots, in the order they were claimed (shared/cms_pair_state.h PAIR_OCCUPIED): the
+  // solve and the restart walk these, not the whole table. Written by the render's threads,
+  // read between iterations after they joined.
+  std::unique_ptr<uint32_t[]> pairOccupied_;
+  std::atomic<uint32_t> pairOccupiedCount_{0};
+  std::vector<uint32_t> occupiedSlotsInOrder() const;   // the list, sorted by slot
   std::atomic<uint64_t> pairCounters_[shared::kPairCounterSlots];
 };
 

@@ -28,11 +28,6 @@ MethodSetup setUpMethod(const PreparedScene& prepared, const RenderOptions& o, c
   s.pairTableSlots = uint32_t(o.pairTableSlots);
   m.lights = buildMethodLights(prepared, *row, uint32_t(o.maxClusters), uint32_t(o.maxTechniques));
   m.estimator = method;
-  // The Vulkan passes do not gather the per-triangle statistics yet: say so rather than let the
-  // option seem to work (the stats JSON reports "cms_cv_techniques": "cluster" there).
-  if (o.backend != "cpu" && s.cms.controlVariate && s.perTriangleCv)
-    info("--cv-techniques triangle runs on the CPU backend only so far; the Vulkan renderer uses one "
-         "control-variate coefficient per light cluster");
   if (cmsReducesToPlainMis(s.cms, m.lights.cms)) {
     info(plainMisNote(m.lights.cms));
     s.cms = CmsMethod{};

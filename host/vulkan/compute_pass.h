@@ -51,11 +51,11 @@ class ComputePass {
   // the viewer's display pass, the solve).
   void dispatch(VkCommandBuffer cmd, const void* constants, uint32_t bytes, uint32_t groupsX,
                 uint32_t groupsY = 1) const;
+  void dispatchIndirect(VkCommandBuffer cmd, const void* constants, uint32_t bytes, const Buffer& args,
+                        VkDeviceSize offset) const;
 
  private:
   void bindAndPush(VkCommandBuffer cmd, const void* constants, uint32_t bytes) const;
-  void dispatchIndirect(VkCommandBuffer cmd, const void* constants, uint32_t bytes, const Buffer& args,
-                        VkDeviceSize offset) const;
   void finish(VkCommandBuffer cmd, PassTimer& timer, const char* label) const;   // barrier, timestamp
 
   DescriptorSet set_;

@@ -16,6 +16,7 @@
 #include "shared/bindings.h"
 #include "shared/cluster_layout.h"
 #include "shared/cms_layouts.h"
+#include "shared/cms_pair_state.h"
 #include "shared/cms_sparse_solve.h"
 #include "shared/display.h"
 #include "shared/layouts.h"

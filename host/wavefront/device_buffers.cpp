@@ -1,5 +1,6 @@
 #include "wavefront/device_buffers.h"
 
+#include "shared/cms_pair_state.h"
 #include "shared/cms_state.h"
 #include "shared/path_state.h"
 #include "util/error.h"
@@ -7,8 +8,9 @@
 namespace mixtrace {
 namespace {
 
-enum class Extent { ONE, PER_PATH, TWO_PER_PATH, PER_PIXEL, TWO_PER_PIXEL, CELL_SLOTS, CELL_STATS, CELL_SOLUTIONS,
-                    CMS_PATHS, CMS_PIXELS, UPLOADED, WINDOW_PIXELS };
+enum class Extent { ONE, PER_PATH, TWO_PER_PATH, SHADOW_SLOTS, PER_PIXEL, TWO_PER_PIXEL, CELL_SLOTS, CELL_STATS, CELL_SOLUTIONS,
+                    PAIR_SLOTS, PAIR_STATS, PAIR_ALPHAS, PAIR_COUNTER_SLOTS, PAIR_OCCUPIED_SLOTS, CMS_PATHS, CMS_PIXELS, UPLOADED,
+                    WINDOW_PIXELS };
 enum class Access { READ_ONLY, READ_WRITE, READ_BACK };
 
 size_t elements(Extent extent, const BufferExtents& e) {
@@ -17,11 +19,17 @@ size_t elements(Extent extent, const BufferExtents& e) {
     case Extent::ONE: return 1;
     case Extent::PER_PATH: return e.paths;
     case Extent::TWO_PER_PATH: return 2 * size_t(e.paths);
+    case Extent::SHADOW_SLOTS: return (e.pairSlots > 1 ? 2 : 1) * size_t(e.paths);
     case Extent::PER_PIXEL: return pixels;
     case Extent::TWO_PER_PIXEL: return 2 * pixels;
     case Extent::CELL_SLOTS: return e.cellSlots;
     case Extent::CELL_STATS: return size_t(e.cellSlots) * shared::cellStatsStride(e.clusters);
     case Extent::CELL_SOLUTIONS: return size_t(e.cellSlots) * shared::cellSolutionStride(e.clusters);
+    case Extent::PAIR_SLOTS: return e.pairSlots;
+    case Extent::PAIR_STATS: return size_t(e.pairSlots) * shared::kPairStatsStride;
+    case Extent::PAIR_ALPHAS: return size_t(e.pairSlots) * shared::kPairAlphaStride;
+    case Extent::PAIR_COUNTER_SLOTS: return shared::kPairCounterSlots;
+    case Extent::PAIR_OCCUPIED_SLOTS: return size_t(e.pairSlots) + shared::kPairOccupiedFirst;
     case Extent::CMS_PATHS: return e.cms ? e.paths : 1;
     case Extent::CMS_PIXELS: return e.cms ? pixels : 1;
     case Extent::UPLOADED: case Extent::WINDOW_PIXELS: break;
@@ -47,6 +55,7 @@ DeviceBuffers::DeviceBuffers(VulkanContext& ctx, const BufferExtents& e) {
   allocate(BINDING_##ID, Extent::extent, sizeof(Type), Access::access, label);
   PATH_STATE_BUFFERS(ALLOCATE_ROW)
   CMS_STATE_BUFFERS(ALLOCATE_ROW)
+  CMS_PAIR_BUFFERS(ALLOCATE_ROW)
 #undef ALLOCATE_ROW
 }
 

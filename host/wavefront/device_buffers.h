@@ -1,6 +1,7 @@
 #pragma once
 // The renderer's own buffers, allocated from their tables in one loop: the path state, queues and
-// film (shaders/shared/path_state.h) and the CMS state (shaders/shared/cms_state.h), sized by each
+// film (shaders/shared/path_state.h), the CMS state (shaders/shared/cms_state.h) and the per-triangle
+// control variate's pair table (shaders/shared/cms_pair_state.h), sized by each
 // row's extent. Rows the host uploads (extent UPLOADED: the clusters) are added by their owner;
 // the scene's by GpuScene. Every buffer is found by its binding number.
 #include <cstdint>
@@ -21,6 +22,8 @@ struct BufferExtents {
   bool cms = false;          // the method learns: CMS_PATHS and CMS_PIXELS are per path / pixel
   uint32_t cellSlots = 1;    // CMS cell table slots (1: the placeholder)
   uint32_t clusters = 1;     // L, for the per-cell strides
+  uint32_t pairSlots = 1;    // per-triangle CV: (cell, technique) pair table slots (1: the placeholder);
+                             // more than 1 also doubles the shadow queue (SHADOW_SLOTS)
 };
 
 class DeviceBuffers {

@@ -10,6 +10,7 @@
 #include "util/error.h"
 #include "vulkan/check.h"
 #include "vulkan/context.h"
+#include "wavefront/passes/sparse_solve_pass.h"
 
 namespace mixtrace {
 namespace {
@@ -27,6 +28,12 @@ uint32_t clustersOf(const RenderSettings& s, const CmsScene* cms) {
   return usesCms(s, cms) ? uint32_t(cms->clusters.clusters.size()) : 1;
 }
 
+// Whether the control variate's coefficients are per technique (one per emissive triangle,
+// --cv-techniques triangle), as the CPU backend decides it (host/cpu/cpu_cms_cells.cpp).
+bool pairTechniquesFor(const RenderSettings& s, const CmsScene* cms) {
+  return usesCms(s, cms) && s.cms.controlVariate && s.perTriangleCv && cms->techniques.techniqueCount > 0;
+}
+
 BufferExtents extentsFor(const RenderSettings& s, const PreparedScene& scene, const CmsScene* cms, uint32_t paths) {
   BufferExtents e;
   e.paths = paths;
@@ -35,6 +42,7 @@ BufferExtents extentsFor(const RenderSettings& s, const PreparedScene& scene, co
   e.cms = usesCms(s, cms);
   e.clusters = clustersOf(s, cms);
   e.cellSlots = e.cms ? makeCellGrid(scene.scene.bounds, s.cells, e.clusters).tableSize : 1;
+  if (pairTechniquesFor(s, cms)) e.pairSlots = pairTableCapacity(s.pairTableSlots, e.cellSlots, cms->techniques.techniqueCount);
   return e;
 }
 
@@ -75,6 +83,17 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
                makeBuffer(ctx, useCms ? cms->clusters.clusters : std::vector<shared::ClusterGpu>(1), "clusters"));
   buffers_.add(shared::BINDING_CLUSTER_LIGHTS,
                makeBuffer(ctx, useCms ? cms->clusterLights : std::vector<shared::ClusterLightGpu>(1), "cluster lights"));
+  // The per-triangle control variate's techniques, by technique source (shared/cms_pair_state.h).
+  pairTechniques_ = pairTechniquesFor(s, cms);
+  if (pairTechniques_) {
+    techniqueCount_ = cms->techniques.techniqueCount;
+    emitterCount_ = cms->techniques.emitterCount;
+    techniquesMerged_ = cms->techniques.merged();
+    pairCapacity_ = pairTableCapacity(s.pairTableSlots, cellTableSize_, techniqueCount_);
+  }
+  buffers_.add(shared::BINDING_TECHNIQUES,
+               makeBuffer(ctx, pairTechniques_ ? cms->techniques.sources : std::vector<shared::TechniqueRefGpu>(1),
+                          "CV techniques"));
   BufferBindings sceneBuffers;
   scene_.offerTo(sceneBuffers);
   bindings_ = buffers_.bindings(sceneBuffers);
@@ -84,9 +103,15 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   spec[SPEC_CMS_SELECTION] = useCms;
   spec[SPEC_CMS_CONTROL_VARIATE] = useCms && s.cms.controlVariate;
   spec[SPEC_CMS_RELATIVE_WEIGHT] = useCms && s.relativeWeighting;
+  spec[SPEC_CMS_PAIR_TECHNIQUES] = pairTechniques_;
   if (useCms) {
     solver_ = std::make_unique<CellSolver>(ctx);
     solver_->bind(bindings_);
+  }
+  if (pairTechniques_) {
+    sparseSolver_ = std::make_unique<GpuSparseSolver>(ctx);
+    sparseSolver_->reserve(cellTableSize_);
+    sparseSolver_->bind(bindings_);
   }
   if (useCms && s.relativeWeighting) pixelEstimatePass_ = std::make_unique<PixelEstimatePass>(ctx, spec, bindings_);
   generate_ = std::make_unique<GeneratePass>(ctx, spec, bindings_);
@@ -109,6 +134,14 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
     buffer(shared::BINDING_CELL_SAMPLES).fillZero(cmd);
     buffer(shared::BINDING_CELL_SOLUTION).fillZero(cmd);   // no cell has a selection yet
     buffer(shared::BINDING_PIXEL_ESTIMATE).fillZero(cmd);
+    // The pair table: no pair, no statistics, no coefficient yet; its keys then persist for the
+    // whole render (shared/cms_pair_state.h).
+    buffer(shared::BINDING_PAIR_KEYS).fillZero(cmd);
+    buffer(shared::BINDING_PAIR_STATS).fillZero(cmd);
+    buffer(shared::BINDING_PAIR_SAMPLES).fillZero(cmd);
+    buffer(shared::BINDING_PAIR_ALPHA).fillZero(cmd);
+    buffer(shared::BINDING_PAIR_COUNTERS).fillZero(cmd);
+    buffer(shared::BINDING_PAIR_OCCUPIED).fillZero(cmd);   // no slot claimed
     recordClearFilm(cmd);
     // Solving the empty statistics gives every cell the default selection and no control variate.
     if (solver_) recordSolve(cmd, false);
@@ -138,13 +171,17 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   vertex.gridInvCellSize = gridInvCellSize_;
   vertex.gatherStatistics = gathering ? 1u : 0u;
   vertex.lightBvh = lightBvh_ ? 1u : 0u;
+  vertex.pairCapacity = pairCapacity_;
+  vertex.emitterCount = emitterCount_;
   for (uint32_t depth = 1; depth <= settings_.maxDepth; ++depth) {
     vertex.depth = depth;
     vertex.queueIn = (depth - 1) & 1u;
     prepare_->record(cmd, timer_, shared::PrepareConstants{shared::kPrepareRays, vertex.queueIn});
     intersect_->record(cmd, timer_, shared::IntersectConstants{paths, vertex.queueIn});
     shade_->record(cmd, timer_, vertex, gathering);
-    if (depth < settings_.maxDepth) {   // the last depth only adds emission: no shadow rays
+    // The last depth only adds emission: no shadow rays; with the per-triangle control variate it
+    // still queues the previous BSDF sample's pair terms for the shadow pass.
+    if (depth < settings_.maxDepth || pairTechniques_) {
       prepare_->record(cmd, timer_, shared::PrepareConstants{shared::kPrepareShadows, vertex.queueIn});
       shadow_->record(cmd, timer_, vertex, gathering);
     }
@@ -170,12 +207,45 @@ WavefrontRenderer::CmsCellState WavefrontRenderer::cmsCellState() const {
 }
 
 void WavefrontRenderer::recordSolve(VkCommandBuffer cmd, bool timed) {
-  const shared::SolveParams params = solveParams();
-  // The solve also restarts the statistics of cells whose selection changed (shared/cms_solve.h).
-  solver_->record(cmd, params);
-  if (timed) timer_.mark(cmd, "solve");
+  shared::SolveParams params = solveParams();
+  if (sparseSolver_) {
+    // The per-triangle control variate, in the CPU backend's order (host/cpu/cpu_cms_cells.cpp
+    // solvePairs): 1. the sparse solve writes every cell's control variate; 2. the cluster solve
+    // learns the selection and restarts cells, keeping that control variate; 3. the pairs of
+    // restarted cells restart.
+    const SparseSolveSettings sparse = sparseSolveSettings(params);
+    sparseSolver_->record(cmd, sparse, timed ? &timer_ : nullptr);
+    params.flags |= shared::kSolveKeepControlVariate;
+    solver_->record(cmd, params);
+    if (timed) timer_.mark(cmd, "solve");
+    sparseSolver_->recordRestart(cmd, sparse, timed ? &timer_ : nullptr);
+  } else {
+    // The solve also restarts the statistics of cells whose selection changed (shared/cms_solve.h).
+    solver_->record(cmd, params);
+    if (timed) timer_.mark(cmd, "solve");
+  }
   if (pixelEstimatePass_ && timed)   // (untimed: the set-up solve, before any film exists)
     pixelEstimatePass_->record(cmd, timer_, shared::PixelEstimateConstants{pixelCount_});
+}
+
+uint32_t WavefrontRenderer::solveMarks() const {
+  // The sparse solve's stages ("sparse_solve.<stage>": 10) and its restart, the cluster solve, and
+  // the pixel estimate: room kept for them, since a sample pass that solves marks more than one
+  // that does not.
+  return (sparseSolver_ ? 10u + 1u : 0u) + 1u + (pixelEstimatePass_ ? 1u : 0u);
+}
+
+SparseSolveSettings WavefrontRenderer::sparseSolveSettings(const shared::SolveParams& params) const {
+  // The parameters of the CPU backend's double solve (host/cpu/cpu_cms_cells.cpp solvePairs).
+  SparseSolveSettings s;
+  s.cellCount = cellTableSize_;
+  s.clusterCount = clusterCount_;
+  s.pairCapacity = pairCapacity_;
+  s.minSamples = params.minSamples;
+  s.minTechniqueSamples = shared::kPairMinSamples;
+  s.ridge = params.ridge;
+  s.flags = shared::kSolveControlVariate;
+  return s;
 }
 
 void WavefrontRenderer::renderSamples(uint32_t count) {
@@ -198,7 +268,7 @@ void WavefrontRenderer::renderSamples(uint32_t count) {
       if (solver_ && schedule_.solvesAfter(spp_ + n + 1)) recordSolve(cmd_, true);
       marksPerSample_ = std::max(marksPerSample_, timer_.marked() - before);
       ++n;
-    } while (n < count && timer_.room() >= marksPerSample_);
+    } while (n < count && timer_.room() >= marksPerSample_ + solveMarks());
     vkCheck(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.commandBufferCount = 1;
@@ -262,13 +332,28 @@ RenderCounters WavefrontRenderer::counters() const {
     c.statisticsAtomics = casAtomics_ ? "cas" : "float";
     c.gatheringSamples = gatheringSamples_;
     for (uint64_t key : buffer(shared::BINDING_CELL_KEYS).downloadAll<uint64_t>()) c.cellsUsed += key != 0;
-    if (settings_.cms.controlVariate) {
-      // The per-technique control variate is not wired into the passes yet: one per cluster.
-      c.cvTechniques = "cluster";
-      c.techniques = clusterCount_;
-    }
+    if (settings_.cms.controlVariate) reportPairs(c);
   }
   return c;
+}
+
+void WavefrontRenderer::reportPairs(RenderCounters& c) const {
+  // The CPU backend's fields (host/cpu/cpu_cms_cells.cpp reportPairs).
+  c.cvTechniques = pairTechniques_ ? "triangle" : "cluster";
+  c.techniques = pairTechniques_ ? techniqueCount_ : clusterCount_;
+  c.techniquesMerged = techniquesMerged_;
+  if (!pairTechniques_) return;
+  c.pairTableCapacity = pairCapacity_;
+  uint32_t used = 0;   // the occupied list's count (shared/cms_pair_state.h)
+  buffer(shared::BINDING_PAIR_OCCUPIED).download(&used, sizeof(used), shared::kPairOccupiedCount * sizeof(uint32_t));
+  c.pairsUsed = used;
+  const std::vector<uint32_t> counters = buffer(shared::BINDING_PAIR_COUNTERS).downloadAll<uint32_t>();
+  c.pairSamples = counters[shared::kPairCounterPairSamples];
+  c.pairRefusedSamples = counters[shared::kPairCounterRefusedSamples];
+  // Keys, statistics and counts (shared/cms_pair_layout.h), alpha, the occupied list, and the
+  // sparse solve's own buffers.
+  c.pairBufferBytes = uint64_t(pairCapacity_) * (shared::kPairBytesPerSlot + 4u * shared::kPairAlphaStride) +
+                      4u * (uint64_t(pairCapacity_) + shared::kPairOccupiedFirst) + sparseSolver_->scratchBytes();
 }
 
 }  // namespace mixtrace

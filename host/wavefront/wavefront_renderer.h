@@ -31,6 +31,11 @@
 
 namespace mixtrace {
 
+// Declared only: its header brings the sparse solve's shared GLSL-compatible headers, which a
+// includer of this one may compile with accessors of its own (tests/gpu/cms_solve_test.cpp).
+class GpuSparseSolver;
+struct SparseSolveSettings;
+
 class VulkanContext;
 
 class WavefrontRenderer : public Renderer {
@@ -78,6 +83,9 @@ class WavefrontRenderer : public Renderer {
   // the pixel estimate the next iteration's statistics are weighted by.
   void recordSolve(VkCommandBuffer cmd, bool timed);
   shared::SolveParams solveParams() const;
+  SparseSolveSettings sparseSolveSettings(const shared::SolveParams& params) const;
+  void reportPairs(RenderCounters& counters) const;   // the control variate's fields of the stats JSON
+  uint32_t solveMarks() const;                         // timer marks one recordSolve(timed) adds
   const Buffer& buffer(uint32_t binding) const { return buffers_[binding]; }
 
   VulkanContext& ctx_;
@@ -93,12 +101,18 @@ class WavefrontRenderer : public Renderer {
   // the method does not use them (shared/cms_state.h).
   bool casAtomics_ = false;   // CMS statistics through compare-and-swap loops, not the *_float_atomics variants
   uint32_t clusterCount_ = 0, cellTableSize_ = 1;
+  // The per-triangle control variate (shared/cms_pair_state.h): the pair table's capacity (1: the
+  // placeholders of the other methods) and the techniques' counts for the stats JSON.
+  bool pairTechniques_ = false;
+  uint32_t pairCapacity_ = 1, techniqueCount_ = 0, emitterCount_ = 0;
+  bool techniquesMerged_ = false;
   glm::vec3 gridOrigin_{0.0f};
   float gridInvCellSize_ = 1.0f;
   DeviceBuffers buffers_;
   BufferBindings bindings_;     // buffers_ and the scene's, by binding number: what the passes bind
   std::vector<uint32_t> spec_;  // the pipelines' specialization constants
   std::unique_ptr<CellSolver> solver_;
+  std::unique_ptr<GpuSparseSolver> sparseSolver_;   // the per-triangle CV's step 1 and 3 (recordSolve)
   std::unique_ptr<PixelEstimatePass> pixelEstimatePass_;
   std::unique_ptr<GeneratePass> generate_;
   std::unique_ptr<PreparePass> prepare_;

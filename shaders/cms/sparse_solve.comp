@@ -3,7 +3,7 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 // The sparse per-cell solve of the per-triangle control variate (the stages, the maths and the
 // scratch layout: shared/cms_sparse_solve.h; the rules: host/cms/sparse_solve.h). One pipeline,
-// one dispatch per stage (STAGE): one invocation per cell or per pair-table slot, spread over a
+// one dispatch per stage (STAGE): one invocation per cell or per occupied pair-table slot, spread over a
 // 2D grid of workgroups so that any count fits the dispatch limits (host/wavefront/passes/sparse_solve_pass.cpp).
 #include "cms/sparse_solve_interface.h"
 #define PASS_BUFFERS SPARSE_SOLVE_BUFFERS
@@ -162,7 +162,20 @@ void cellStage(uint cell) {
   else if (STAGE == kSparseFinishCells) finishCell(cell);
 }
 
-void pairStage(uint slot) {
+// The dispatch of the pair stages: one invocation per occupied slot, workgroups beyond the
+// device's limit in x wrapped into y as the host does for the cell stages.
+void writePairArgs() {
+  uint groups = (min(pairOccupied[kPairOccupiedCount], pc.pairCapacity) + kWorkgroupSize - 1u) / kWorkgroupSize;
+  uint x = min(groups, pc.maxGroupsX);
+  sparseArgs[0] = x;
+  sparseArgs[1] = x == 0u ? 0u : (groups + x - 1u) / x;
+  sparseArgs[2] = 1u;
+}
+
+// `item` indexes the list of occupied slots (shared/cms_pair_state.h PAIR_OCCUPIED).
+void pairStage(uint item) {
+  if (item >= min(pairOccupied[kPairOccupiedCount], pc.pairCapacity)) return;
+  uint slot = pairOccupied[kPairOccupiedFirst + item];
   if (slot >= pc.pairCapacity) return;
   Pair p;
   // The restart and the clear need the slot's cell only, not its statistics.
@@ -214,7 +227,9 @@ void pairStage(uint slot) {
 
 void main() {
   uint i = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * kWorkgroupSize) + gl_GlobalInvocationID.x;
-  if (STAGE == kSparseInitCells || STAGE == kSparseRidgeCells || STAGE == kSparsePivotCells ||
+  if (STAGE == kSparsePairArgs) {
+    if (i == 0u) writePairArgs();
+  } else if (STAGE == kSparseInitCells || STAGE == kSparseRidgeCells || STAGE == kSparsePivotCells ||
       STAGE == kSparseFinishCells)
     cellStage(i);
   else

@@ -1,5 +1,5 @@
 // The sparse CMS solve pass (cms/sparse_solve.comp): the per-triangle control variate's pair
-// statistics and the cells' BSDF rows in, alpha_t per pair and alpha_B, validity and sum of alpha
+// statistics (walked through the list of occupied slots) and the cells' BSDF rows in, alpha_t per pair and alpha_B, validity and sum of alpha
 // per cell out (shared/cms_sparse_solve.h). Pushed SparseSolveConstants. Declared once for the
 // shader and the host (host/wavefront/passes/sparse_solve_pass.cpp).
 #ifndef MIXTRACE_CMS_SPARSE_SOLVE_INTERFACE_H
@@ -11,6 +11,7 @@
 
 #define SPARSE_SOLVE_BUFFERS(X)                                                                      \
   BUFFER_PAIR_KEYS(X) BUFFER_PAIR_STATS(X) BUFFER_PAIR_SAMPLES(X) BUFFER_PAIR_ALPHA(X)              \
-  BUFFER_CELL_STATS(X) BUFFER_CELL_SAMPLES(X) BUFFER_CELL_SOLUTION(X) BUFFER_SPARSE_SCRATCH(X)
+  BUFFER_PAIR_OCCUPIED(X) BUFFER_CELL_STATS(X) BUFFER_CELL_SAMPLES(X) BUFFER_CELL_SOLUTION(X)         \
+  BUFFER_SPARSE_SCRATCH(X) BUFFER_SPARSE_ARGS(X)
 
 #endif

@@ -13,6 +13,9 @@
 layout(constant_id = SPEC_CMS_SELECTION) const bool CMS_SELECTION = false;
 layout(constant_id = SPEC_CMS_CONTROL_VARIATE) const bool CMS_CONTROL_VARIATE = false;
 layout(constant_id = SPEC_CMS_RELATIVE_WEIGHT) const bool CMS_RELATIVE_WEIGHT = true;
+// The per-triangle control variate (shared/cms_pair_terms.h): false folds its code away at pipeline
+// creation, so the other methods' pipelines carry none of it (their pair rows are placeholders).
+layout(constant_id = SPEC_CMS_PAIR_TECHNIQUES) const bool CMS_PAIR_TECHNIQUES = false;
 
 #define CELL_KEY_LOAD(slot) cellKeys[slot]
 #define CELL_KEY_CAS(slot, expected, desired) atomicCompSwap(cellKeys[slot], expected, desired)
@@ -20,3 +23,9 @@ layout(constant_id = SPEC_CMS_RELATIVE_WEIGHT) const bool CMS_RELATIVE_WEIGHT = 
 #define CLUSTER_LIGHT(i) clusterLights[i]
 #define CELL_SOLUTION(i) cellSolution[i]
 #define CLUSTER_DEFAULT(k) clusterDefaults[k]
+#define PAIR_KEY_LOAD(slot) pairKeys[slot]
+#define PAIR_KEY_CAS(slot, expected, desired) atomicCompSwap(pairKeys[slot], expected, desired)
+#define PAIR_SLOT_CLAIMED(slot) \
+  pairOccupied[kPairOccupiedFirst + atomicAdd(pairOccupied[kPairOccupiedCount], 1u)] = (slot)
+#define TECHNIQUE(source) techniques[source]
+#define PAIR_ALPHA(i) pairAlpha[i]

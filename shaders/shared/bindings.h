@@ -19,6 +19,7 @@
 #define SPEC_CMS_SELECTION 5         // lights chosen through per-cell cluster selection (learned, cv, cms)
 #define SPEC_CMS_CONTROL_VARIATE 6   // the control variate (cv, cms)
 #define SPEC_CMS_RELATIVE_WEIGHT 7   // relative-throughput statistics weights (docs/estimator.md §5)
-#define SPEC_COUNT 8
+#define SPEC_CMS_PAIR_TECHNIQUES 8   // the per-triangle control variate (shared/cms_pair_terms.h; cv, cms)
+#define SPEC_COUNT 9
 
 #endif

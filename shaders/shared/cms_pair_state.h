@@ -37,11 +37,19 @@
 // Counters the host reads after the render (kPairCounter*), for the stats JSON.
 #define BUFFER_PAIR_COUNTERS(X) \
   X(PAIR_COUNTERS, pairCounters, 39, READ_BACK, uint, PAIR_COUNTER_SLOTS, "CMS pair counters")
-// Binding 43 is the sparse solve's own scratch (per cell), owned by its pass.
+// The slots claimed so far, in the order they were claimed: entry kPairOccupiedCount holds their
+// number, entries kPairOccupiedFirst.. the slots (extent PAIR_OCCUPIED_SLOTS = capacity +
+// kPairOccupiedFirst). Slots are never freed, so the list only grows; the solve walks it instead of
+// the whole table (a table of 2^22 slots that 112k pairs use, paper Veach MIS at 160x120, cost
+// its pair stages a third of the render on lavapipe when they ran one invocation per slot).
+#define BUFFER_PAIR_OCCUPIED(X) \
+  X(PAIR_OCCUPIED, pairOccupied, 44, READ_WRITE, uint, PAIR_OCCUPIED_SLOTS, "CMS occupied pair slots")
+// Binding 43 is the sparse solve's own scratch (per cell), binding 45 its dispatch arguments, both
+// owned by its pass.
 
 #define CMS_PAIR_BUFFERS(X) \
   BUFFER_PAIR_KEYS(X) BUFFER_PAIR_STATS(X) BUFFER_PAIR_SAMPLES(X) BUFFER_PAIR_ALPHA(X) BUFFER_TECHNIQUES(X) \
-  BUFFER_PAIR_COUNTERS(X)
+  BUFFER_PAIR_COUNTERS(X) BUFFER_PAIR_OCCUPIED(X)
 
 SHARED_BEGIN
 CMS_PAIR_BUFFERS(BUFFER_BINDING_CONSTANT)
@@ -75,5 +83,9 @@ const uint kPairMinSamples = 8u;
 const uint kPairCounterPairSamples = 0u;      // light-technique samples that found or claimed their pair
 const uint kPairCounterRefusedSamples = 1u;   // light-technique samples whose pair the table refused
 const uint kPairCounterSlots = 2u;            // PAIR_COUNTER_SLOTS: the counters' extent
+
+// PAIR_OCCUPIED entries.
+const uint kPairOccupiedCount = 0u;   // how many slots are claimed
+const uint kPairOccupiedFirst = 1u;   // the first claimed slot; the list's i-th at kPairOccupiedFirst + i
 SHARED_END
 #endif

@@ -19,7 +19,10 @@
 //
 // The includer defines PAIR_KEY_LOAD(slot) -> the uint64 key in that slot, and
 // PAIR_KEY_CAS(slot, expected, desired) -> the previous key (an atomic compare-and-swap on the key
-// array): GLSL binds them to a buffer and atomicCompSwap, C++ to std::atomic<uint64_t>.
+// array): GLSL binds them to a buffer and atomicCompSwap, C++ to std::atomic<uint64_t>; and
+// PAIR_SLOT_CLAIMED(slot), called once per slot by the invocation whose swap claimed it, which
+// appends the slot to the list of occupied slots (shared/cms_pair_state.h PAIR_OCCUPIED) that the
+// solve walks.
 #ifndef MIXTRACE_SHARED_CMS_PAIR_TABLE_H
 #define MIXTRACE_SHARED_CMS_PAIR_TABLE_H
 #include "shared/cms_layouts.h"
@@ -42,7 +45,11 @@ SHARED_FN uint findOrInsertPair(uint capacity, uint cell, uint technique) {
       // Another invocation may claim this slot between the load and the swap: then the swap
       // returns its key, which is ours (the same pair, raced) or another's (probe on).
       uint64_t previous = PAIR_KEY_CAS(slot, uint64_t(0), key);
-      if (previous == uint64_t(0) || previous == key) return slot;
+      if (previous == uint64_t(0)) {
+        PAIR_SLOT_CLAIMED(slot);
+        return slot;
+      }
+      if (previous == key) return slot;
     }
     slot = (slot + i + 1u) & mask;
   }

@@ -19,20 +19,10 @@
 #include "shared/cms_pair_state.h"
 #include "shared/cms_pair_table.h"
 #include "shared/cms_sampling.h"
+#include "shared/cms_technique_source.h"
 #include "shared/dialect.h"
 #include "shared/lights.h"
 SHARED_BEGIN_WITH_BUFFERS
-
-// The technique source of a light sample's point: its emitter, or emitterCount + light for a
-// punctual light (shared/cms_pair_state.h TECHNIQUES).
-SHARED_FN uint techniqueSourceOfLightSample(LightSample ls, uint emitterCount) {
-  if (ls.isDelta) return emitterCount + ls.light;
-  return uint(TRIANGLE_SHADING(ls.triangle).emitter);
-}
-
-// The technique source of a BSDF sample's hit on emitting triangle `tri` (only where
-// clusterOfBsdfHit found a cluster: the triangle emits towards the vertex).
-SHARED_FN uint techniqueSourceOfHit(uint tri) { return uint(TRIANGLE_SHADING(tri).emitter); }
 
 // p_t(z) = p_k(z) / Q_t: the normalised density of the technique holding `source`, from the
 // density p_k of its cluster's light sampling.
@@ -46,9 +36,10 @@ SHARED_FN uint pairSlotOfSample(uint capacity, uint cell, uint source, bool gath
   return gathers ? findOrInsertPair(capacity, cell, technique) : findPair(capacity, cell, technique);
 }
 
-// alpha_t of the pair in `slot` (0 for kNoPairSlot). Written only by the solve between
+// alpha_t of the pair in `slot` (0 for kNoPairSlot; not named pairAlpha: GLSL declares the PAIR_ALPHA
+// row by that name). Written only by the solve between
 // iterations, so it never depends on the samples it is applied to.
-SHARED_FN vec3 pairAlpha(uint slot) {
+SHARED_FN vec3 pairCoefficient(uint slot) {
   if (slot == kNoPairSlot) return vec3(0.0f);
   return vec3(PAIR_ALPHA(pairAlphaIndex(slot, 0u)), PAIR_ALPHA(pairAlphaIndex(slot, 1u)),
               PAIR_ALPHA(pairAlphaIndex(slot, 2u)));
@@ -59,7 +50,7 @@ SHARED_FN vec3 pairAlpha(uint slot) {
 // integral T (sum_t alpha_t + alpha_B) is cms_vertex_terms.h's controlVariateIntegral: the solve
 // stores it as the cell's solutionAlphaSum.
 SHARED_FN vec3 pairControlVariateTerm(vec3 T, uint cell, uint L, uint slot, float pt, float pB, float peff) {
-  vec3 g = cellAlphaB(cell, L) * pB + pairAlpha(slot) * pt;
+  vec3 g = cellAlphaB(cell, L) * pB + pairCoefficient(slot) * pt;
   return T * g / peff;
 }
 

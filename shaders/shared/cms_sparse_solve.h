@@ -31,6 +31,11 @@
 // and, recorded apart after the per-cluster solve (host/wavefront/passes/sparse_solve_pass.h):
 //   kSparseRestartPairs pairs: the statistics and sample count of every pair whose cell holds 0
 //                      samples (the cluster solve restarted it: a new selection). Keys stay.
+// The pair stages run one invocation per *occupied* slot, not per slot: the list of claimed slots
+// (PAIR_OCCUPIED, shared/cms_pair_state.h) sizes them through an indirect dispatch whose
+// arguments kSparsePairArgs (one invocation) writes from the list's count before the first pair
+// stage (and again before the restart). A table is sized for the worst case (every cell seeing
+// every technique) and is mostly empty: paper Veach MIS at 160x120 uses 112k of 4.2M slots.
 // A slot whose key is empty, or names a cell >= cellCount, takes part in nothing. The sums are
 // compare-and-swap loops on the bits (uint atomics: every device has them), so the pass needs no
 // optional feature; contention is per cell, low for the usual tens of pairs per cell.
@@ -46,8 +51,14 @@
 #define BUFFER_SPARSE_SCRATCH(X) \
   X(SPARSE_SCRATCH, sparseScratch, 43, READ_WRITE, uint, CELL_SCRATCH, "CMS sparse solve scratch")
 
+// The pair stages' indirect dispatch arguments (VkDispatchIndirectCommand: groups x, y, z), written
+// by kSparsePairArgs; owned by the solve.
+#define BUFFER_SPARSE_ARGS(X) \
+  X(SPARSE_ARGS, sparseArgs, 45, READ_WRITE, uint, DISPATCH_ARGS, "CMS sparse solve dispatch arguments")
+
 SHARED_BEGIN
 BUFFER_SPARSE_SCRATCH(BUFFER_BINDING_CONSTANT)
+BUFFER_SPARSE_ARGS(BUFFER_BINDING_CONSTANT)
 
 // Scratch slots of one cell.
 const uint kSparseMaxDiagonal = 0u;   // float bits: the largest usable diagonal (A_BB included)
@@ -70,7 +81,7 @@ const uint kSparseFlagValid = 4u;       // the cell's control variate is used (w
 // The stage a pipeline of the pass runs: a specialization constant, one pipeline per stage, so
 // that each is compiled alone (lavapipe runs every branch of a shader with masks: a stage chosen
 // by a push constant cost the sum of all stages). After the renderer's constant ids (SPEC_COUNT).
-#define SPEC_SPARSE_STAGE 8
+#define SPEC_SPARSE_STAGE 9
 // Its values.
 const uint kSparseInitCells = 0u;
 const uint kSparseMaxPairs = 1u;
@@ -82,7 +93,8 @@ const uint kSparseAlphaPairs = 6u;
 const uint kSparseFinishCells = 7u;
 const uint kSparseClearPairs = 8u;
 const uint kSparseRestartPairs = 9u;
-const uint kSparseStageCount = 10u;
+const uint kSparsePairArgs = 10u;   // one invocation: the pair stages' dispatch from the occupied count
+const uint kSparseStageCount = 11u;
 
 // Push constants of the sparse solve pass (cms/sparse_solve_interface.h).
 struct SparseSolveConstants {
@@ -93,7 +105,7 @@ struct SparseSolveConstants {
   uint minTechniqueSamples;   // PAIR_SAMPLES below this: the technique is dropped (alpha_t = 0)
   uint flags;                 // kSolveControlVariate: write the solution; else zeros, invalid
   float ridge;                // relative to the mean diagonal of the techniques in the system
-  uint pad0;
+  uint maxGroupsX;            // the device's maxComputeWorkGroupCount[0]: kSparsePairArgs wraps into y past it
 };
 
 // The Jacobi scale (a + r)^-1/2 as a^-1/2 (1 + r/a)^-1/2, as the per-cluster solve forms it

@@ -183,9 +183,15 @@ struct ShadowRay {
   float pB;            // CMS: p_B(z) if the point is visible
   float ck;            // CMS: c_k of the vertex's cell
   uint flags;          // kShadowRayCms: pay the CMS terms
-  float pad;
+  uint source;         // per-triangle CV: the light point's technique source (shared/cms_pair_state.h)
 };
 const uint kShadowRayCms = 1u;
+// The per-triangle control variate (shaders/wavefront/shade_interface.h says why): records the
+// shadow pass settles without tracing. A light sample at a hidden point (integrand 0, pB 0), and a
+// BSDF sample whose hit lies on a light technique: cell, source, pk = p_j, pB = p_B, ck = p_eff,
+// integrand = f, throughput, contribution.x = the statistics weight.
+const uint kShadowRayHidden = 2u;
+const uint kShadowRayBsdfPair = 4u;
 
 // Queue counters and indirect dispatch arguments, in one buffer.
 struct DispatchArgs {

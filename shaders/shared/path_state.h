@@ -21,7 +21,9 @@
 // Queues: the extension rays' path indices in ping-pong halves of pathCount entries each, the
 // shadow rays, and the counters with the indirect dispatch arguments.
 #define BUFFER_RAY_QUEUE(X) X(RAY_QUEUE, rayQueue, 16, READ_WRITE, uint, TWO_PER_PATH, "ray queues")
-#define BUFFER_SHADOW_QUEUE(X) X(SHADOW_QUEUE, shadowQueue, 17, READ_WRITE, ShadowRay, PER_PATH, "shadow-ray queue")
+// One record per path and depth; two with the per-triangle control variate (a light sample and
+// the previous BSDF sample's pair terms: shaders/wavefront/shade_interface.h).
+#define BUFFER_SHADOW_QUEUE(X) X(SHADOW_QUEUE, shadowQueue, 17, READ_WRITE, ShadowRay, SHADOW_SLOTS, "shadow-ray queue")
 #define BUFFER_QUEUE_STATE(X) X(QUEUE_STATE, queues, 18, READ_BACK, QueueState, ONE, "queue counters")
 // Per pixel: [2 * pixel] the running mean, [2 * pixel + 1] sqrt of the sum of squared deviations
 // (shared/film.h).

@@ -1,5 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+// The interface's pair-table rows (shared/cms_pair_state.h) name 64-bit keys.
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 // Stage 3: at every queued path's hit: emission (MIS-weighted against light sampling), one light
 // sample (queued as a shadow ray with its contribution) and one BSDF sample (the next extension
 // ray). Balance heuristic over the two techniques: p_eff = p_light + p_bsdf.
@@ -21,6 +23,7 @@
 #include "gpu/cms_statistics.glsl"
 #include "shared/bsdf.h"
 #include "shared/cms_sampling.h"
+#include "shared/cms_technique_source.h"
 #include "shared/cms_vertex_terms.h"
 #include "shared/ray_offset.h"
 #include "shared/rng.h"
@@ -51,11 +54,36 @@ float settlePreviousBsdfSample(uint path, HitRecord hit, SurfaceHit sh, vec3 le,
   float pj;
   uint j = clusterOfBsdfHit(hit.triangle, le, rayOrigin[path], sh.position, pj);
   float peff = bsdfSampleMixtureDensity(prevCell, L, j, pj, prevPdfB);
-  if (CMS_CONTROL_VARIATE && cellSolutionValid(prevCell, L))
+  bool cv = CMS_CONTROL_VARIATE && cellSolutionValid(prevCell, L);
+  float w = prevCell != kNoCell && passGathersStatistics() ? sampleWeight(cvState[path].throughput, path, prevCell) : 0.0;
+  if (CMS_PAIR_TECHNIQUES && j != kNoCell && prevCell != kNoCell && (cv || w > 0.0)) {
+    // Per technique: the hit triangle's technique (host/cpu/cpu_cms_path.cpp
+    // settlePendingBsdfSample); its pair lives in the shadow pass's rows, so its control-variate
+    // term and statistics are settled there.
+    ShadowRay s;
+    s.origin = vec3(0.0);
+    s.tMax = 0.0;
+    s.direction = vec3(0.0);
+    s.path = path;
+    s.contribution = vec3(w, 0.0, 0.0);
+    s.cell = prevCell;
+    s.integrand = le * cvState[path].bsdfCos;
+    s.cluster = j;
+    s.throughput = cvState[path].throughput;
+    s.pk = pj;
+    s.pB = prevPdfB;
+    s.ck = peff;
+    s.flags = kShadowRayBsdfPair;
+    s.source = techniqueSourceOfHit(hit.triangle);
+    shadowQueue[atomicAdd(queues.shadowCount, 1u)] = s;
+  } else if (CMS_PAIR_TECHNIQUES) {
+    // No light technique: g = alpha_B p_B alone.
+    if (cv) radiance[path] -= controlVariateTerm(cvState[path].throughput, prevCell, L, kNoCell, 0.0, prevPdfB, peff);
+  } else if (cv) {
     radiance[path] -= controlVariateTerm(cvState[path].throughput, prevCell, L, j, pj, prevPdfB, peff);
+  }
   if (prevCell != kNoCell && passGathersStatistics())
-    addSampleStatistics(prevCell, L, j, pj, prevPdfB, peff, le * cvState[path].bsdfCos,
-                        sampleWeight(cvState[path].throughput, path, prevCell));
+    addSampleStatistics(prevCell, L, j, pj, prevPdfB, peff, le * cvState[path].bsdfCos, w);
   return balanceWeight(prevPdfB, peff);
 }
 
@@ -121,9 +149,11 @@ void queueLightSample(Vertex v, INOUT(uint) rng) {
   float peff = lightSampleMixtureDensity(ls.pdf, pB);
   vec3 contribution = v.beta * f / peff;
   float ck = ls.pdf / max(pk, 1e-38);   // the cell's c_k (ls.pdf = c_k p_k)
-  if (cmsTerms && !reachable) {
-    settleLightSample(v.cell, k, pk, ck, 0.0, f, v.beta, v.path);
+  uint source = CMS_PAIR_TECHNIQUES && cmsTerms ? techniqueSourceOfLightSample(ls, pc.emitterCount) : 0u;
+  if (cmsTerms && !reachable && !CMS_PAIR_TECHNIQUES) {
+    settleLightSample(v.cell, k, pk, ck, 0.0, f, v.beta, v.path, source);
   } else if (!isBlack(contribution) || cmsTerms) {
+    // (A hidden point with the per-triangle control variate: queued untraced, kShadowRayHidden.)
     ShadowRay s;
     s.origin = v.origin;
     shadowRay(v.origin, ls, s.direction, s.tMax);
@@ -136,8 +166,8 @@ void queueLightSample(Vertex v, INOUT(uint) rng) {
     s.pk = pk;
     s.pB = pB;
     s.ck = ck;
-    s.flags = cmsTerms ? kShadowRayCms : 0u;
-    s.pad = 0.0;
+    s.flags = (cmsTerms ? kShadowRayCms : 0u) | (reachable ? 0u : kShadowRayHidden);
+    s.source = source;
     uint slot = atomicAdd(queues.shadowCount, 1u);
     shadowQueue[slot] = s;
   }

@@ -13,6 +13,9 @@
 #include "shared/path_state.h"
 #include "shared/scene_buffers.h"
 
+// No pair rows (shared/cms_pair_state.h): with them shade would bind 36 storage buffers, past
+// lavapipe's 32 per stage. With the per-triangle control variate shade queues each sample's pair
+// terms as a record for the shadow pass (kShadowRayBsdfPair, kShadowRayHidden), which binds them.
 #define SHADE_BUFFERS(X)                                                                                \
   BUFFER_TRIANGLES(X) BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) BUFFER_TEXTURES(X) BUFFER_TEXELS(X) \
   BUFFER_LIGHTS(X) BUFFER_EMITTERS(X) BUFFER_LIGHT_SELECTION(X) BUFFER_LIGHT_BVH(X) BUFFER_MIS_NORMAL(X) \
@@ -36,6 +39,8 @@ struct VertexConstants {
   float gridInvCellSize;
   uint gatherStatistics;  // CMS: 1 when a later solve reads this sample pass's statistics
   uint lightBvh;          // 1: lights chosen by the light BVH (pt-bvh), else by the selection table
+  uint pairCapacity;      // per-triangle CV: slots of the (cell, technique) pair table (a power of two)
+  uint emitterCount;      // per-triangle CV: technique sources of punctual lights start here
 };
 SHARED_END
 #endif

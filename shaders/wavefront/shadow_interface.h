@@ -4,11 +4,12 @@
 // host (host/wavefront/passes/shadow_pass.cpp).
 #ifndef MIXTRACE_WAVEFRONT_SHADOW_INTERFACE_H
 #define MIXTRACE_WAVEFRONT_SHADOW_INTERFACE_H
+#include "shared/cms_pair_state.h"
 #include "wavefront/shade_interface.h"
 
 #define SHADOW_BUFFERS(X)                                                                   \
   BUFFER_BVH_NODES(X) BUFFER_TRIANGLES(X) BUFFER_RADIANCE(X) BUFFER_SHADOW_QUEUE(X) BUFFER_QUEUE_STATE(X) \
-  BUFFER_CELL_STATS(X) BUFFER_CELL_SAMPLES(X) BUFFER_CELL_SOLUTION(X) BUFFER_PIXEL_ESTIMATE(X)
+  BUFFER_CELL_STATS(X) BUFFER_CELL_SAMPLES(X) BUFFER_CELL_SOLUTION(X) BUFFER_PIXEL_ESTIMATE(X) CMS_PAIR_BUFFERS(X)
 // Named by functions of the headers it includes (the CMS sampling functions, the light and
 // texture look-ups) that it never calls: declared for GLSL to compile them, dropped by the
 // compiler, not bound (gpu/buffers.glsl).

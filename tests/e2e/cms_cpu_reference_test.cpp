@@ -5,7 +5,8 @@
 //   - with the same seed, before any statistics could move a cell off its defaults, the CPU and
 //     the GPU trace the same paths (same random numbers in the same order, same cells, same
 //     mixture pdfs);
-//   - independent renders of each method agree statistically between the backends, and the CPU cms
+//   - independent renders of each method agree statistically between the backends (the same
+//     control variate on both: per triangle, the default), and the CPU cms
 //     image agrees with the CPU pt-uniform image (every method is unbiased);
 //   - the CPU renders carry no non-finite sample and are not black;
 //   - at equal samples, CPU cms beats CPU pt-uniform by a wide margin on many_lights.
@@ -79,6 +80,7 @@ TEST_P(CmsCpuReference, SameSeedTracesTheSamePathsAsVulkan) {
     EXPECT_EQ(cpu.stats["cms_cells_used"], gpu.stats["cms_cells_used"]) << method;
     EXPECT_EQ(cpu.stats["cms_clusters"], gpu.stats["cms_clusters"]) << method;
     EXPECT_EQ(cpu.stats["cms_cell_table_size"], gpu.stats["cms_cell_table_size"]) << method;
+    EXPECT_EQ(cpu.stats.value("cms_cv_techniques", ""), gpu.stats.value("cms_cv_techniques", "")) << method;
   }
 }
 
@@ -102,6 +104,9 @@ TEST_P(CmsCpuReference, AgreesWithVulkanAndWithThePlainPathTracer) {
     if (cpu.mean.rgb.empty() || gpu.mean.rgb.empty()) continue;
     ComparisonResult r = compareImages(cpu.mean, cpu.variance, gpu.mean, gpu.variance);
     EXPECT_TRUE(r.agree) << method << " CPU vs Vulkan: " << r.summary();
+    // Like with like: both backends ran the same control variate (per triangle by default).
+    EXPECT_EQ(cpu.stats.value("cms_cv_techniques", ""), gpu.stats.value("cms_cv_techniques", "")) << method;
+    EXPECT_EQ(cpu.stats.value("cms_techniques", 0), gpu.stats.value("cms_techniques", 0)) << method;
     if (std::string(method) == "cms") {
       ComparisonResult b = compareImages(cpu.mean, cpu.variance, baseline.mean, baseline.variance);
       EXPECT_TRUE(b.agree) << "CPU cms vs CPU pt-uniform: " << b.summary();

@@ -26,10 +26,16 @@ uint64_t casPairKey(uint32_t slot, uint64_t expected, uint64_t desired) {
   (*gPairKeys)[slot].compare_exchange_strong(expected, desired);
   return expected;  // the previous value, as GLSL's atomicCompSwap returns it
 }
+// The occupied list as the renderers keep it: count first, then the slots in claim order.
+std::vector<std::atomic<uint32_t>>* gOccupied = nullptr;
+void claimSlot(uint32_t slot) {
+  (*gOccupied)[mixtrace::shared::kPairOccupiedFirst + (*gOccupied)[mixtrace::shared::kPairOccupiedCount].fetch_add(1)] = slot;
+}
 }  // namespace
 
 #define PAIR_KEY_LOAD(slot) ((*gPairKeys)[slot].load())
 #define PAIR_KEY_CAS(slot, expected, desired) casPairKey(slot, expected, desired)
+#define PAIR_SLOT_CLAIMED(slot) claimSlot(slot)
 #include "shared/cms_pair_table.h"
 
 using namespace mixtrace;
@@ -40,16 +46,24 @@ namespace {
 using Pair = glm::uvec2;  // (cell, technique)
 
 struct CpuTable {
-  explicit CpuTable(size_t capacity) : keys(capacity) {
+  explicit CpuTable(size_t capacity) : keys(capacity), occupiedList(capacity + shared::kPairOccupiedFirst) {
     for (auto& k : keys) k = 0;
+    for (auto& o : occupiedList) o = 0;
     gPairKeys = &keys;
+    gOccupied = &occupiedList;
   }
   std::vector<uint64_t> snapshot() const {
     std::vector<uint64_t> s;
     for (const auto& k : keys) s.push_back(k.load());
     return s;
   }
+  std::vector<uint32_t> occupiedSnapshot() const {
+    std::vector<uint32_t> s;
+    for (const auto& o : occupiedList) s.push_back(o.load());
+    return s;
+  }
   std::vector<std::atomic<uint64_t>> keys;
+  std::vector<std::atomic<uint32_t>> occupiedList;
 };
 
 // The GPU's table: the key array stays on the device between dispatches.
@@ -59,7 +73,8 @@ class GpuTable {
       : ctx_(ContextOptions{"", true}),
         pass_(ctx_, "pair_lookup", BINDINGS_OF(PAIR_LOOKUP_BUFFERS), sizeof(shared::PairLookupConstants), {}),
         capacity_(capacity),
-        keys_(makeBuffer(ctx_, std::vector<uint64_t>(capacity, 0), "pair keys")) {}
+        keys_(makeBuffer(ctx_, std::vector<uint64_t>(capacity, 0), "pair keys")),
+        occupied_(makeBuffer(ctx_, std::vector<uint32_t>(capacity + shared::kPairOccupiedFirst, 0), "occupied slots")) {}
 
   // Each query's slot (or kNoPairSlot), all queries at once (or in order, by one invocation).
   std::vector<uint32_t> run(const std::vector<Pair>& queries, uint32_t mode) {
@@ -68,6 +83,7 @@ class GpuTable {
     pass_.bind(shared::BINDING_PAIR_QUERIES, q);
     pass_.bind(shared::BINDING_PAIR_SLOTS, slots);
     pass_.bind(shared::BINDING_PAIR_LOOKUP_KEYS, keys_);
+    pass_.bind(shared::BINDING_PAIR_LOOKUP_OCCUPIED, occupied_);
     shared::PairLookupConstants pc{};
     pc.queryCount = uint32_t(queries.size());
     pc.capacity = capacity_;
@@ -79,6 +95,11 @@ class GpuTable {
     return slots.downloadAll<uint32_t>();
   }
   std::vector<uint64_t> keys() const { return keys_.downloadAll<uint64_t>(); }
+  std::vector<uint32_t> occupiedList() const {   // the buffer may be rounded up: its first entries
+    std::vector<uint32_t> list = occupied_.downloadAll<uint32_t>();
+    list.resize(capacity_ + shared::kPairOccupiedFirst);
+    return list;
+  }
   size_t validationErrors() const { return ctx_.validationErrors(); }
   uint64_t maxStorageBufferRange() const { return ctx_.maxStorageBufferRange(); }
   double lastSubmitSeconds() const { return lastSubmitSeconds_; }  // the dispatch alone
@@ -88,6 +109,7 @@ class GpuTable {
   ComputePass pass_;
   uint32_t capacity_;
   Buffer keys_;
+  Buffer occupied_;
   double lastSubmitSeconds_ = 0.0;
 };
 
@@ -113,6 +135,21 @@ size_t expectOneSlotPerPair(const std::vector<Pair>& queries, const std::vector<
 
 size_t occupied(const std::vector<uint64_t>& keys) {
   return size_t(std::count_if(keys.begin(), keys.end(), [](uint64_t k) { return k != 0; }));
+}
+
+// The occupied list (count, then slots) names exactly the slots whose key is set, each once: what
+// the sparse solve walks instead of the table.
+void expectOccupiedListMatchesKeys(const std::vector<uint32_t>& list, const std::vector<uint64_t>& keys) {
+  ASSERT_EQ(list.size(), keys.size() + shared::kPairOccupiedFirst);
+  const uint32_t count = list[shared::kPairOccupiedCount];
+  EXPECT_EQ(count, occupied(keys)) << "one entry per claimed slot";
+  ASSERT_LE(count, keys.size());
+  std::vector<uint32_t> listed(list.begin() + shared::kPairOccupiedFirst, list.begin() + shared::kPairOccupiedFirst + count);
+  std::sort(listed.begin(), listed.end());
+  std::vector<uint32_t> set;
+  for (uint32_t slot = 0; slot < keys.size(); ++slot)
+    if (keys[slot] != 0) set.push_back(slot);
+  EXPECT_EQ(listed, set) << "the list holds every occupied slot, once";
 }
 
 }  // namespace
@@ -166,6 +203,7 @@ TEST(CmsPairTable, FullTableRefusesNewPairsAndKeepsOldOnes) {
     EXPECT_EQ(shared::findOrInsertPair(16, i / 10, i % 10), slots[i]) << i;
   }
   EXPECT_EQ(t.snapshot(), full) << "nothing overwritten";
+  expectOccupiedListMatchesKeys(t.occupiedSnapshot(), full);
 }
 
 // The C++ binding is as safe under contention as the GPU's: 8 threads each insert all 1500 pairs
@@ -202,6 +240,7 @@ TEST(CmsPairTable, CppInsertionIsConsistentUnderContention) {
   EXPECT_EQ(std::count(allSlots.begin(), allSlots.end(), kNoPairSlot), 0);
   EXPECT_EQ(expectOneSlotPerPair(allQueries, allSlots, keys), 1500u);
   EXPECT_EQ(occupied(keys), 1500u);
+  expectOccupiedListMatchesKeys(t.occupiedSnapshot(), keys);
 }
 
 // (a) + (b): 65536 invocations insert 3000 distinct pairs (about 22 racing for each) at once;
@@ -226,6 +265,7 @@ TEST(CmsPairTable, GpuInsertionGivesEveryPairOneSlotAndLookupsFindIt) {
   EXPECT_EQ(std::count(inserted.begin(), inserted.end(), kNoPairSlot), 0) << "the table has room for every pair";
   EXPECT_EQ(expectOneSlotPerPair(queries, inserted, keys), size_t(distinct));
   EXPECT_EQ(occupied(keys), size_t(distinct)) << "no slot claimed twice or for nothing";
+  expectOccupiedListMatchesKeys(gpu.occupiedList(), keys);
 
   // Lookups: the same queries, then pairs never inserted (techniques beyond 10,000, a new cell).
   EXPECT_EQ(gpu.run(queries, shared::kPairLookupFind), inserted);
@@ -266,6 +306,7 @@ TEST(CmsPairTable, GpuFullTableRefusesNewPairsAndNeverOverwrites) {
     }
   }
   EXPECT_EQ(gpu.keys(), full) << "nothing overwritten";
+  expectOccupiedListMatchesKeys(gpu.occupiedList(), full);
   EXPECT_EQ(gpu.validationErrors(), 0u);
 }
 
@@ -287,6 +328,7 @@ TEST(CmsPairTable, CppAndGpuGiveTheSameSlotsInOrder) {
   const std::vector<uint32_t> gpuSlots = gpu.run(queries, shared::kPairLookupInsertInOrder);
   EXPECT_EQ(gpuSlots, cpuSlots);
   EXPECT_EQ(gpu.keys(), cpu.snapshot());
+  EXPECT_EQ(gpu.occupiedList(), cpu.occupiedSnapshot()) << "in order, the same slots in the same order";
   const auto refused = std::count(cpuSlots.begin(), cpuSlots.end(), kNoPairSlot);
   EXPECT_GE(refused, 1100 - 1024) << "the test reaches the probe bound";
   EXPECT_EQ(gpu.validationErrors(), 0u);
@@ -318,6 +360,7 @@ TEST(CmsPairTable, TenThousandTechniquesTimesCellsFitAndInsertFast) {
   size_t wrong = 0;
   for (uint32_t i = 0; i < n; ++i) wrong += keys[slots[i]] != shared::pairKey(queries[i].x, queries[i].y);
   EXPECT_EQ(wrong, 0u);
+  expectOccupiedListMatchesKeys(gpu.occupiedList(), keys);
   EXPECT_LT(seconds, 20.0) << "lavapipe on two shared cores";
   EXPECT_EQ(gpu.validationErrors(), 0u);
 }

@@ -993,6 +993,9 @@ WavefrontRenderer::CmsCellState renderedCells(VulkanContext& ctx, const std::str
   settings.height = 48;
   settings.cells = cells;
   settings.cms = cmsMethodFor(method);
+  // The per-cluster control variate these tests hold to the per-cluster solve and kCellSampleCap
+  // (the per-triangle one, now the default on Vulkan too, is tests/e2e/cms_triangle_cv_test.cpp's).
+  settings.perTriangleCv = false;
   MethodLights lights;
   lights.selection = buildLightSelection(prepared.lights, LightSelection::Power);
   lights.cms = setUpClusters(prepared, lights.selection, 16, settings.cms.defaults);

@@ -102,12 +102,14 @@ class CmsSparseSolve : public ::testing::Test {
 
   // Uploads the problem. `solution` (optional) is the cell solution before the solve (else NaN).
   struct Uploaded {
-    Buffer keys, pairStats, pairSamples, pairAlpha, cellStats, cellSamples, solution, defaults;
+    Buffer keys, pairStats, pairSamples, pairAlpha, occupied, cellStats, cellSamples, solution, defaults;
     std::vector<std::vector<uint32_t>> slotOf;
   };
   static Uploaded upload(const Problem& pr, const std::vector<float>* solution = nullptr) {
     const uint32_t cap = pr.capacity;
     std::vector<uint64_t> keys(cap, 0);
+    // The occupied list (count, then slots), as the renderers' inserts fill it.
+    std::vector<uint32_t> occupied(size_t(cap) + shared::kPairOccupiedFirst, 0);
     std::vector<float> pstats(size_t(cap) * shared::kPairStatsStride, kSentinel);
     std::vector<uint32_t> psamples(cap, 0xdeadbeefu);
     std::vector<float> palpha(size_t(cap) * shared::kPairAlphaStride, kSentinel);
@@ -134,6 +136,7 @@ class CmsSparseSolve : public ::testing::Test {
         }
         EXPECT_NE(placed, shared::kNoPairSlot) << "test table too small";
         keys[placed] = key;
+        occupied[shared::kPairOccupiedFirst + occupied[shared::kPairOccupiedCount]++] = placed;
         pstats[shared::pairStatsAtt(placed)] = float(p.aTT);
         pstats[shared::pairStatsAtB(placed)] = float(p.aTB);
         for (uint32_t ch = 0; ch < 3; ++ch) pstats[shared::pairStatsBt(placed, ch)] = float(p.bT[ch]);
@@ -147,6 +150,7 @@ class CmsSparseSolve : public ::testing::Test {
     u.pairStats = makeBuffer(*ctx_, pstats, "pair stats");
     u.pairSamples = makeBuffer(*ctx_, psamples, "pair samples");
     u.pairAlpha = makeBuffer(*ctx_, palpha, "pair alpha");
+    u.occupied = makeBuffer(*ctx_, occupied, "occupied pair slots");
     u.cellStats = makeBuffer(*ctx_, cstats, "cell stats");
     u.cellSamples = makeBuffer(*ctx_, csamples, "cell samples");
     u.solution = makeBuffer(*ctx_, sol, "cell solution");
@@ -159,6 +163,7 @@ class CmsSparseSolve : public ::testing::Test {
                    {shared::BINDING_PAIR_STATS, &u.pairStats},
                    {shared::BINDING_PAIR_SAMPLES, &u.pairSamples},
                    {shared::BINDING_PAIR_ALPHA, &u.pairAlpha},
+                   {shared::BINDING_PAIR_OCCUPIED, &u.occupied},
                    {shared::BINDING_CELL_STATS, &u.cellStats},
                    {shared::BINDING_CELL_SAMPLES, &u.cellSamples},
                    {shared::BINDING_CELL_SOLUTION, &u.solution}});

@@ -20,6 +20,7 @@ GpuSparseSolver::GpuSparseSolver(VulkanContext& ctx) : ctx_(ctx) {
     passes_.push_back(std::make_unique<ComputePass>(ctx, "sparse_solve", BINDINGS_OF(SPARSE_SOLVE_BUFFERS),
                                                     sizeof(shared::SparseSolveConstants), specialization));
   }
+  args_ = Buffer(ctx_, 3 * sizeof(uint32_t), "CMS sparse solve dispatch arguments");
   reserve(1);
 }
 
@@ -36,6 +37,7 @@ void GpuSparseSolver::reserve(uint32_t cells) {
 void GpuSparseSolver::bind(const BufferBindings& buffers) {
   bound_ = buffers;
   bound_[shared::BINDING_SPARSE_SCRATCH] = &scratch_;
+  bound_[shared::BINDING_SPARSE_ARGS] = &args_;
   for (auto& pass : passes_) pass->bind(bound_);
 }
 
@@ -55,11 +57,11 @@ namespace {
 // What the timings call each stage (shared/cms_sparse_solve.h), indexed by stage.
 const char* const kStageLabels[shared::kSparseStageCount] = {
     "sparse_solve.init",  "sparse_solve.max",   "sparse_solve.mean",   "sparse_solve.ridge",  "sparse_solve.schur",
-    "sparse_solve.pivot", "sparse_solve.alpha", "sparse_solve.finish", "sparse_solve.clear", "sparse_restart"};
+    "sparse_solve.pivot", "sparse_solve.alpha", "sparse_solve.finish", "sparse_solve.clear", "sparse_restart",
+    "sparse_solve.args"};
 }  // namespace
 
-void GpuSparseSolver::stage(VkCommandBuffer cmd, const SparseSolveSettings& s, uint32_t stage, uint32_t items,
-                            PassTimer* timer) const {
+shared::SparseSolveConstants GpuSparseSolver::constants(const SparseSolveSettings& s) const {
   shared::SparseSolveConstants c{};
   c.cellCount = s.cellCount;
   c.clusterCount = s.clusterCount;
@@ -68,6 +70,13 @@ void GpuSparseSolver::stage(VkCommandBuffer cmd, const SparseSolveSettings& s, u
   c.minTechniqueSamples = s.minTechniqueSamples;
   c.flags = s.flags;
   c.ridge = s.ridge;
+  c.maxGroupsX = ctx_.properties().limits.maxComputeWorkGroupCount[0];
+  return c;
+}
+
+void GpuSparseSolver::stage(VkCommandBuffer cmd, const SparseSolveSettings& s, uint32_t stage, uint32_t items,
+                            PassTimer* timer) const {
+  const shared::SparseSolveConstants c = constants(s);
   // One invocation per item; workgroups beyond the device's limit in x wrap into y (the shader
   // computes the item from both), so a table of 2^22 slots fits lavapipe's 65535.
   uint32_t groups = (items + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize;
@@ -81,25 +90,36 @@ void GpuSparseSolver::stage(VkCommandBuffer cmd, const SparseSolveSettings& s, u
   if (timer) timer->mark(cmd, kStageLabels[stage]);
 }
 
+void GpuSparseSolver::pairStage(VkCommandBuffer cmd, const SparseSolveSettings& s, uint32_t stage,
+                                PassTimer* timer) const {
+  const shared::SparseSolveConstants c = constants(s);
+  passes_[stage]->dispatchIndirect(cmd, &c, sizeof(c), args_, 0);
+  computeBarrier(cmd);
+  if (timer) timer->mark(cmd, kStageLabels[stage]);
+}
+
 void GpuSparseSolver::record(VkCommandBuffer cmd, const SparseSolveSettings& s, PassTimer* timer) const {
   check(s);
   if (s.cellCount == 0) return;
-  const uint32_t cells = s.cellCount, pairs = s.pairCapacity;
+  const uint32_t cells = s.cellCount;
   stage(cmd, s, shared::kSparseInitCells, cells, timer);
-  stage(cmd, s, shared::kSparseMaxPairs, pairs, timer);
-  stage(cmd, s, shared::kSparseMeanPairs, pairs, timer);
+  stage(cmd, s, shared::kSparsePairArgs, 1, timer);
+  pairStage(cmd, s, shared::kSparseMaxPairs, timer);
+  pairStage(cmd, s, shared::kSparseMeanPairs, timer);
   stage(cmd, s, shared::kSparseRidgeCells, cells, timer);
-  stage(cmd, s, shared::kSparseSchurPairs, pairs, timer);
+  pairStage(cmd, s, shared::kSparseSchurPairs, timer);
   stage(cmd, s, shared::kSparsePivotCells, cells, timer);
-  stage(cmd, s, shared::kSparseAlphaPairs, pairs, timer);
+  pairStage(cmd, s, shared::kSparseAlphaPairs, timer);
   stage(cmd, s, shared::kSparseFinishCells, cells, timer);
-  stage(cmd, s, shared::kSparseClearPairs, pairs, timer);
+  pairStage(cmd, s, shared::kSparseClearPairs, timer);
 }
 
 void GpuSparseSolver::recordRestart(VkCommandBuffer cmd, const SparseSolveSettings& s, PassTimer* timer) const {
   check(s);
   if (s.cellCount == 0) return;
-  stage(cmd, s, shared::kSparseRestartPairs, s.pairCapacity, timer);
+  // The arguments again: this step may be recorded without record() before it.
+  stage(cmd, s, shared::kSparsePairArgs, 1, nullptr);
+  pairStage(cmd, s, shared::kSparseRestartPairs, timer);
 }
 
 }  // namespace mixtrace

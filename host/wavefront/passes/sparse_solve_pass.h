@@ -48,15 +48,16 @@ class GpuSparseSolver {
   // before the next record(); never while a recorded solve is in flight.
   void reserve(uint32_t cells);
   uint32_t reservedCells() const { return reservedCells_; }
-  size_t scratchBytes() const { return reservedCells_ ? scratch_.size() : 0; }
+  size_t scratchBytes() const { return (reservedCells_ ? scratch_.size() : 0) + args_.size(); }
 
-  // The buffers: every row of SPARSE_SOLVE_BUFFERS but the scratch (its own), by binding number;
+  // The buffers: every row of SPARSE_SOLVE_BUFFERS but the scratch and the dispatch arguments (its
+  // own), by binding number; PAIR_OCCUPIED lists the slots the pair stages visit;
   // they must outlive the recorded commands.
   void bind(const BufferBindings& buffers);
 
   // Records the solve (step 1 above), its stages separated by compute barriers and followed by
   // one, so the next pass reads the solution. Statistics written by earlier passes must already be
-  // visible. With a timer, marks each stage ("sparse_solve.<stage>": 9 marks). Throws mixtrace::Error
+  // visible. With a timer, marks each stage ("sparse_solve.<stage>": 10 marks). Throws mixtrace::Error
   // for more cells than reserved, a capacity that is not a power of two, L > kMaxClusters, or
   // counts beyond the device's dispatch limits.
   void record(VkCommandBuffer cmd, const SparseSolveSettings& settings, PassTimer* timer = nullptr) const;
@@ -65,12 +66,17 @@ class GpuSparseSolver {
 
  private:
   void check(const SparseSolveSettings& settings) const;
+  shared::SparseSolveConstants constants(const SparseSolveSettings& settings) const;
+  // A cell stage (or kSparsePairArgs), `items` invocations.
   void stage(VkCommandBuffer cmd, const SparseSolveSettings& settings, uint32_t stage, uint32_t items,
              PassTimer* timer) const;
+  // A pair stage: one invocation per occupied slot, dispatched from args_.
+  void pairStage(VkCommandBuffer cmd, const SparseSolveSettings& settings, uint32_t stage, PassTimer* timer) const;
 
   VulkanContext& ctx_;
   std::vector<std::unique_ptr<ComputePass>> passes_;   // one per stage (SPEC_SPARSE_STAGE)
   Buffer scratch_;
+  Buffer args_;   // the pair stages' VkDispatchIndirectCommand (binding 45, kSparsePairArgs writes it)
   uint32_t reservedCells_ = 0;
   BufferBindings bound_;
 };
