@@ -208,6 +208,9 @@ struct QueueState {
   uint extensionRays[2];  // rays traced so far, 64-bit as (low, high): counted by prepare.comp
   uint shadowRays[2];
   uint verticesWithoutCell;  // CMS: vertices that found the cell table full (no control variate)
+  // Records of this depth's shadow queue that trace no ray (kShadowRayHidden, kShadowRayBsdfPair:
+  // the per-triangle control variate's terms), so that shadowRays counts rays only.
+  uint untracedShadows;
 };
 
 // A light of a cluster, in the cluster-grouped list: cdf is inclusive inside its cluster.

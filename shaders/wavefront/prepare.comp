@@ -25,10 +25,11 @@ void main() {
     queues.rayArgs.z = 1u;
     queues.rayCount[1u - pc.queueIn] = 0u;
     queues.shadowCount = 0u;
+    queues.untracedShadows = 0u;
     addToCounter(queues.extensionRays, n);
   } else {
     uint n = queues.shadowCount;
-    addToCounter(queues.shadowRays, n);
+    addToCounter(queues.shadowRays, n - min(queues.untracedShadows, n));
     queues.shadowArgs.x = (n + kWorkgroupSize - 1u) / kWorkgroupSize;
     queues.shadowArgs.y = 1u;
     queues.shadowArgs.z = 1u;

@@ -76,6 +76,7 @@ float settlePreviousBsdfSample(uint path, HitRecord hit, SurfaceHit sh, vec3 le,
     s.flags = kShadowRayBsdfPair;
     s.source = techniqueSourceOfHit(hit.triangle);
     shadowQueue[atomicAdd(queues.shadowCount, 1u)] = s;
+    atomicAdd(queues.untracedShadows, 1u);   // a record, not a ray (the stats count rays)
   } else if (CMS_PAIR_TECHNIQUES) {
     // No light technique: g = alpha_B p_B alone.
     if (cv) radiance[path] -= controlVariateTerm(cvState[path].throughput, prevCell, L, kNoCell, 0.0, prevPdfB, peff);
@@ -170,6 +171,7 @@ void queueLightSample(Vertex v, INOUT(uint) rng) {
     s.source = source;
     uint slot = atomicAdd(queues.shadowCount, 1u);
     shadowQueue[slot] = s;
+    if (!reachable) atomicAdd(queues.untracedShadows, 1u);
   }
 }
 
