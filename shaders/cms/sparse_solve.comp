@@ -162,13 +162,12 @@ void cellStage(uint cell) {
   else if (STAGE == kSparseFinishCells) finishCell(cell);
 }
 
-// The dispatch of the pair stages: one invocation per occupied slot, workgroups beyond the
-// device's limit in x wrapped into y as the host does for the cell stages.
+// The dispatch of the pair stages: one invocation per occupied slot, on the cell stages' grid.
 void writePairArgs() {
   uint groups = (min(pairOccupied[kPairOccupiedCount], pc.pairCapacity) + kWorkgroupSize - 1u) / kWorkgroupSize;
-  uint x = min(groups, pc.maxGroupsX);
-  sparseArgs[0] = x;
-  sparseArgs[1] = x == 0u ? 0u : (groups + x - 1u) / x;
+  uvec2 grid = sparseDispatchGrid(groups, pc.maxGroupsX);
+  sparseArgs[0] = grid.x;
+  sparseArgs[1] = grid.y;
   sparseArgs[2] = 1u;
 }
 

@@ -23,9 +23,6 @@ layout(constant_id = SPEC_CMS_PAIR_TECHNIQUES) const bool CMS_PAIR_TECHNIQUES = 
 #define CLUSTER_LIGHT(i) clusterLights[i]
 #define CELL_SOLUTION(i) cellSolution[i]
 #define CLUSTER_DEFAULT(k) clusterDefaults[k]
-#define PAIR_KEY_LOAD(slot) pairKeys[slot]
-#define PAIR_KEY_CAS(slot, expected, desired) atomicCompSwap(pairKeys[slot], expected, desired)
-#define PAIR_SLOT_CLAIMED(slot) \
-  pairOccupied[kPairOccupiedFirst + atomicAdd(pairOccupied[kPairOccupiedCount], 1u)] = (slot)
+#include "gpu/pair_table_access.glsl"
 #define TECHNIQUE(source) techniques[source]
 #define PAIR_ALPHA(i) pairAlpha[i]

@@ -112,6 +112,16 @@ struct SparseSolveConstants {
 // (shared/cms_solve.h): neither a + r nor a tiny a against a large r is ever formed.
 SHARED_FN float sparseScale(float ridge, float a) { return (1.0f / sqrt(a)) / sqrt(1.0f + ridge / a); }
 
+// The 2D grid of `groups` workgroups on a device with at most `maxX` in x (the rest wrap into y; the
+// shader recovers the item from both): the host's dispatches of the cell stages and
+// kSparsePairArgs's indirect dispatch of the pair stages use the same one.
+SHARED_FN uvec2 sparseDispatchGrid(uint groups, uint maxX) {
+  uvec2 grid;
+  grid.x = min(groups, maxX);
+  grid.y = grid.x == 0u ? 0u : (groups + grid.x - 1u) / grid.x;
+  return grid;
+}
+
 // Whether a pair's statistics let its technique take part (the rules of host/cms/sparse_solve.h).
 SHARED_FN bool sparsePairUsable(uint samples, uint minTechniqueSamples, float aTT, float aTB, vec3 bT) {
   return samples >= minTechniqueSamples && cmsUsableDiagonal(aTT) && cmsIsFinite(aTB) && cmsIsFinite3(bT);

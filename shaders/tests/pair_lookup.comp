@@ -9,10 +9,7 @@
 #define PASS_CONSTANTS PairLookupConstants
 #include "gpu/buffers.glsl"
 
-#define PAIR_KEY_LOAD(slot) pairKeys[slot]
-#define PAIR_KEY_CAS(slot, expected, desired) atomicCompSwap(pairKeys[slot], expected, desired)
-#define PAIR_SLOT_CLAIMED(slot) \
-  pairOccupied[kPairOccupiedFirst + atomicAdd(pairOccupied[kPairOccupiedCount], 1u)] = (slot)
+#include "gpu/pair_table_access.glsl"
 #include "shared/cms_pair_table.h"
 
 layout(local_size_x = kWorkgroupSize) in;

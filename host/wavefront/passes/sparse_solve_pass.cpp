@@ -79,13 +79,10 @@ void GpuSparseSolver::stage(VkCommandBuffer cmd, const SparseSolveSettings& s, u
   const shared::SparseSolveConstants c = constants(s);
   // One invocation per item; workgroups beyond the device's limit in x wrap into y (the shader
   // computes the item from both), so a table of 2^22 slots fits lavapipe's 65535.
-  uint32_t groups = (items + shared::kWorkgroupSize - 1) / shared::kWorkgroupSize;
-  uint32_t maxX = ctx_.properties().limits.maxComputeWorkGroupCount[0];
-  uint32_t groupsX = std::min(groups, maxX);
-  uint32_t groupsY = (groups + groupsX - 1) / groupsX;
-  if (groupsY > ctx_.properties().limits.maxComputeWorkGroupCount[1])
+  const glm::uvec2 grid = shared::sparseDispatchGrid(workgroupsFor(items), c.maxGroupsX);
+  if (grid.y > ctx_.properties().limits.maxComputeWorkGroupCount[1])
     throw Error("CMS sparse solve: " + std::to_string(items) + " items exceed the device's dispatch limits");
-  passes_[stage]->dispatch(cmd, &c, sizeof(c), groupsX, groupsY);
+  passes_[stage]->dispatch(cmd, &c, sizeof(c), grid.x, grid.y);
   computeBarrier(cmd);
   if (timer) timer->mark(cmd, kStageLabels[stage]);
 }
