@@ -324,37 +324,41 @@ LightClusters buildLightClusters(const PreparedScene& scene, uint32_t maxCluster
   std::vector<std::vector<uint32_t>> partition = partitionLights(summaries, maxClusters, directionalDiag2);
 
   LightClusters out;
+  out.uniformEmitters = defaults == ClusterSelection::ProportionalToTriangles;
   out.lightCluster.assign(set.lights.size(), 0u);
   out.lightPmfInCluster.assign(set.lights.size(), 0.0f);
-  std::vector<double> clusterPower, clusterCount;
+  std::vector<double> clusterPower, clusterTriangles, clusterLightCount;
+  const bool byTriangles = out.uniformEmitters;
   for (uint32_t c = 0; c < partition.size(); ++c) {
     const std::vector<uint32_t>& members = partition[c];
     shared::ClusterGpu cluster{};
     cluster.firstLight = uint32_t(out.clusterLights.size());
     cluster.lightCount = uint32_t(members.size());
     cluster.kind = set.lights[members.front()].kind == shared::kLightArea ? shared::kClusterArea : shared::kClusterDelta;
-    std::vector<double> power;
+    std::vector<double> power, triangles;
     for (uint32_t i : members) {
       double p = i < set.power.size() ? set.power[i] : 0.0;
       power.push_back(std::isfinite(p) && p > 0.0 ? p : 0.0);
+      triangles.push_back(uniformSelectionWeight(set.lights[i]));
       out.lightCluster[i] = c;
       out.clusterLights.push_back(i);
     }
-    std::vector<float> pmf = normalise(power);
+    std::vector<float> pmf = normalise(byTriangles ? triangles : power);
     for (size_t j = 0; j < members.size(); ++j) out.lightPmfInCluster[members[j]] = pmf[j];
     double total = std::accumulate(power.begin(), power.end(), 0.0);
     cluster.power = float(total);
     out.clusters.push_back(cluster);
     clusterPower.push_back(total);
-    clusterCount.push_back(double(members.size()));
+    clusterTriangles.push_back(std::accumulate(triangles.begin(), triangles.end(), 0.0));
+    clusterLightCount.push_back(double(members.size()));
   }
 
   switch (defaults) {
     case ClusterSelection::UniformOverClusters: out.defaultSelection = normalise(std::vector<double>(partition.size(), 1.0)); break;
-    case ClusterSelection::ProportionalToLightCount: out.defaultSelection = normalise(clusterCount); break;
+    case ClusterSelection::ProportionalToTriangles: out.defaultSelection = normalise(clusterTriangles); break;
     case ClusterSelection::ProportionalToPower: {
       double total = std::accumulate(clusterPower.begin(), clusterPower.end(), 0.0);
-      out.defaultSelection = normalise(total > 0.0 ? clusterPower : clusterCount);
+      out.defaultSelection = normalise(total > 0.0 ? clusterPower : clusterLightCount);
       break;
     }
   }
@@ -363,8 +367,8 @@ LightClusters buildLightClusters(const PreparedScene& scene, uint32_t maxCluster
 
 LightClusters buildLightClusters(const PreparedScene& scene, uint32_t maxClusters, LightSelection defaults) {
   return buildLightClusters(scene, maxClusters,
-                            defaults == LightSelection::Power ? ClusterSelection::ProportionalToPower
-                                                              : ClusterSelection::ProportionalToLightCount);
+                            defaults == LightSelection::Uniform ? ClusterSelection::ProportionalToTriangles
+                                                                : ClusterSelection::ProportionalToPower);
 }
 
 }  // namespace mixtrace

@@ -40,19 +40,24 @@
 
 namespace mixtrace {
 
-// What the default (not learned) selection pmf over clusters is. The published method keeps
-// uniform selection over its techniques (UniformOverClusters). ProportionalToLightCount gives
-// each cluster its lights' share of uniform light selection; ProportionalToPower, combined with
-// the power-proportional pmf inside a cluster, reproduces LightSelection::Power exactly.
-// (With power-proportional in-cluster pmfs no cluster pmf reproduces uniform light selection.)
-enum class ClusterSelection { UniformOverClusters, ProportionalToLightCount, ProportionalToPower };
+// What the default (not learned) selection pmf over clusters is, and the fixed pmf of a light
+// inside its cluster. ProportionalToTriangles gives each cluster its triangles' share and each
+// light its triangle count inside the cluster: with a uniform triangle inside the light, that is
+// LightSelection::Uniform exactly (every emissive triangle equally likely, the paper's baseline).
+// ProportionalToPower, with power-proportional pmfs inside the cluster, reproduces
+// LightSelection::Power exactly. UniformOverClusters (power inside) is uniform over the techniques
+// of a per-cluster control variate.
+enum class ClusterSelection { UniformOverClusters, ProportionalToTriangles, ProportionalToPower };
 
 struct LightClusters {
   std::vector<uint32_t> lightCluster;         // per light: its cluster
   std::vector<uint32_t> clusterLights;        // light indices grouped by cluster (contiguous)
   std::vector<shared::ClusterGpu> clusters;   // firstLight/lightCount index clusterLights
   std::vector<float> lightPmfInCluster;       // per light: its fixed probability inside its cluster,
-                                              // power-proportional (uniform in a zero-power cluster)
+                                              // by power (uniform in a zero-power cluster) or, for
+                                              // ProportionalToTriangles, by triangle count
+  bool uniformEmitters = false;               // a light's triangle is picked uniformly inside it
+                                              // (ProportionalToTriangles), else by EmitterGpu.pmf
   std::vector<float> defaultSelection;        // per cluster: the default selection pmf, sums to 1
 };
 
@@ -61,8 +66,8 @@ struct LightClusters {
 // lights gives empty clusters.
 LightClusters buildLightClusters(const PreparedScene& scene, uint32_t maxClusters, ClusterSelection defaults);
 
-// The method's selection setting: LightSelection::Uniform -> ProportionalToLightCount (identical
-// to uniform light selection while every light is its own cluster), Power -> ProportionalToPower.
+// The method's selection setting: LightSelection::Uniform -> ProportionalToTriangles, Power (and
+// Bvh, whose clusters take the power defaults) -> ProportionalToPower.
 LightClusters buildLightClusters(const PreparedScene& scene, uint32_t maxClusters, LightSelection defaults);
 
 }  // namespace mixtrace

@@ -18,11 +18,13 @@ uint64_t techniquesWithGroups(const LightSet& lights, uint32_t size) {
 }
 
 // The probability inside its cluster of sampling emitter e (the light's pmf in the cluster times
-// the emitter's in the light), or of a punctual light.
+// the emitter's in the light, as shared/lights.h's emitterPmf gives it), or of a punctual light.
 double sourceProbability(const LightSet& lights, const LightClusters& clusters, uint32_t light, uint32_t emitter,
                          bool punctual) {
   double p = clusters.lightPmfInCluster[light];
-  return punctual ? p : p * double(lights.emitters[emitter].pmf);
+  if (punctual) return p;
+  return p * (clusters.uniformEmitters ? 1.0 / double(lights.lights[light].emitterCount)
+                                       : double(lights.emitters[emitter].pmf));
 }
 
 }  // namespace
@@ -89,7 +91,7 @@ LightTechniques buildLightTechniques(const LightSet& lights, const LightClusters
   }
   t.techniqueCount = uint32_t(t.clusterOf.size());
   // Q_t in (0, 1]. A technique of zero probability is never sampled and its emitters emit nothing
-  // (the emitter pmf is area x radiance), so its density p_k / Q_t is 0 anywhere it is evaluated;
+  // (by power the emitter pmf is area x radiance), so its density p_k / Q_t is 0 anywhere it is evaluated;
   // share 1 keeps that division finite.
   for (size_t s = 0; s < t.sources.size(); ++s) {
     double q = share[t.sources[s].technique];

@@ -7,6 +7,7 @@ namespace mixtrace {
 MethodLights buildMethodLights(const PreparedScene& scene, const MethodInfo& method, uint32_t maxClusters,
                                uint32_t maxTechniques) {
   MethodLights m;
+  m.kind = method.selection;
   m.selection = buildLightSelection(scene.lights, method.selection);
   if (method.selection == LightSelection::Bvh) m.bvh = buildLightBvh(scene);
   if (method.clusters) m.cms = setUpClusters(scene, m.selection, maxClusters, method.selection, maxTechniques);

@@ -15,6 +15,7 @@
 namespace mixtrace {
 
 struct MethodLights {
+  LightSelection kind = LightSelection::Power;         // the method's (the triangle inside a light too)
   std::vector<shared::LightSelectionGpu> selection;   // per light of the prepared scene
   CmsScene cms;                                        // the light clusters, for methods with clusters
   std::vector<shared::LightBvhNodeGpu> bvh;            // the light BVH (LightSelection::Bvh), else empty

@@ -4,10 +4,11 @@ namespace mixtrace {
 
 const std::vector<MethodInfo>& methodTable() {
   // cv is the published method: the control variate with the selection kept fixed. It keeps
-  // uniform selection, which here is uniform over lights (each cluster weighted by its light count).
+  // uniform selection: uniform over emissive triangles (each cluster weighted by its triangle count,
+  // scene/light_selection.h), as the paper's baseline and pbrt-v4's uniform light sampler.
   static const std::vector<MethodInfo> table = {
       // name, summary, selection, clusters, learnSelection, controlVariate, viewerKey
-      {"pt-uniform", "MIS path tracer, light picked uniformly", LightSelection::Uniform, false, false, false, '1'},
+      {"pt-uniform", "MIS path tracer, every emissive triangle equally likely", LightSelection::Uniform, false, false, false, '1'},
       {"pt-power", "MIS path tracer, light picked by power", LightSelection::Power, false, false, false, '2'},
       {"learned", "per-cell learned cluster selection, no control variate", LightSelection::Power, true, true,
        false, '3'},

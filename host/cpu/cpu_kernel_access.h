@@ -9,6 +9,7 @@
 #define SHARED_SCENE (*::mixtrace::boundCpuKernel().scene)
 #define SHARED_LIGHT_SELECTION (*::mixtrace::boundCpuKernel().lightSelection)
 #define SHARED_LIGHT_BVH (::mixtrace::boundLightBvh())
+#define SHARED_UNIFORM_EMITTERS (::mixtrace::boundCpuKernel().uniformEmitters)
 #include "scene/shared_scene_access.h"
 
 #define CELL_KEY_LOAD(slot) (::mixtrace::boundCpuKernel().cms->keyLoad(slot))

@@ -19,6 +19,7 @@ struct CpuKernelContext {
   const PreparedScene* scene = nullptr;
   const std::vector<shared::LightSelectionGpu>* lightSelection = nullptr;   // the method's, per light
   const std::vector<shared::LightBvhNodeGpu>* lightBvh = nullptr;   // the method's light BVH (empty: none)
+  bool uniformEmitters = false;            // the method picks a light's triangle uniformly
   CpuCmsCells* cms = nullptr;              // the CMS methods' cells; null for the pt-* methods
   const glm::vec3* filmMean = nullptr;     // the running means, per pixel (pixel estimate only)
 };

@@ -111,6 +111,7 @@ CpuRenderer::CpuRenderer(const PreparedScene& scene, const MethodLights& lights,
   kernel_.scene = &scene_;
   kernel_.lightSelection = &lights_.selection;
   kernel_.lightBvh = &lights_.bvh;
+  kernel_.uniformEmitters = lights_.kind == LightSelection::Uniform;
   kernel_.cms = cms_.get();
 }
 

@@ -30,7 +30,8 @@ std::vector<shared::LightSelectionGpu> buildLightSelection(const LightSet& set, 
   }
   std::vector<double> weights;
   if (selection == LightSelection::Power || selection == LightSelection::Bvh) weights = set.power;
-  else weights.assign(set.lights.size(), 1.0);
+  else
+    for (const shared::LightGpu& l : set.lights) weights.push_back(uniformSelectionWeight(l));
   setSelection(lights, weights);
   return lights;
 }

@@ -33,6 +33,13 @@
 #define LIGHT_SELECT_CDF(i) (SHARED_LIGHT_SELECTION[i].cdf)
 #define LIGHT_CLUSTER(light) (SHARED_LIGHT_SELECTION[light].cluster)
 #define LIGHT_CLUSTER_PMF(light) (SHARED_LIGHT_SELECTION[light].clusterPmf)
+// Whether the method picks the triangle inside a light uniformly (SHARED_UNIFORM_EMITTERS: a bool
+// expression, false where the includer does not say).
+#ifdef SHARED_UNIFORM_EMITTERS
+#define EMITTERS_UNIFORM (SHARED_UNIFORM_EMITTERS)
+#else
+#define EMITTERS_UNIFORM false
+#endif
 // The method's light BVH (optional: SHARED_LIGHT_BVH names a `const
 // std::vector<LightBvhNodeGpu>&`, empty where the method picks lights by the table).
 #ifdef SHARED_LIGHT_BVH

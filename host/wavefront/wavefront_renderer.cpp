@@ -75,6 +75,8 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   // The method's light selection, beside the scene's lights (shared/method_buffers.h).
   buffers_.add(shared::BINDING_LIGHT_SELECTION, makeBuffer(ctx, lights.selection, "light selection"));
   lightBvh_ = !lights.bvh.empty();
+  // Without a tree (no light to put in one) the BVH's selection is the table's power selection.
+  lightSelection_ = lights.kind == LightSelection::Bvh && !lightBvh_ ? LightSelection::Power : lights.kind;
   buffers_.add(shared::BINDING_LIGHT_BVH,
                makeBuffer(ctx, lightBvh_ ? lights.bvh : std::vector<shared::LightBvhNodeGpu>(1), "light BVH"));
   buffers_.add(shared::BINDING_CLUSTER_DEFAULTS,
@@ -170,7 +172,7 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   vertex.gridOrigin = gridOrigin_;
   vertex.gridInvCellSize = gridInvCellSize_;
   vertex.gatherStatistics = gathering ? 1u : 0u;
-  vertex.lightBvh = lightBvh_ ? 1u : 0u;
+  vertex.lightSelection = uint32_t(lightSelection_);
   vertex.pairCapacity = pairCapacity_;
   vertex.emitterCount = emitterCount_;
   for (uint32_t depth = 1; depth <= settings_.maxDepth; ++depth) {

@@ -92,6 +92,7 @@ class WavefrontRenderer : public Renderer {
   RenderSettings settings_;
   uint32_t lightCount_;
   bool lightBvh_ = false;   // the method picks lights by its light BVH (pt-bvh)
+  LightSelection lightSelection_ = LightSelection::Power;   // the method's (VertexConstants)
   uint32_t pixelCount_;
   uint32_t pathCount_;
   uint32_t spp_ = 0;

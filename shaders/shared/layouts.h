@@ -97,6 +97,18 @@ struct LightGpu {
   vec3 intensity;      // colour * intensity (W/sr, or W/m^2 for directional)
 };
 
+// How a method picks a light (host/scene/light_selection.h's LightSelection has these values; the
+// vertex passes read it as VertexConstants.lightSelection):
+//   uniform: every emissive triangle and every punctual light equally likely, the "uniform light
+//            selection" of the paper's baseline, of SeeSharp and of pbrt-v4's UniformLightSampler
+//            (each makes every emissive triangle a light): a light by its triangle count, then a
+//            triangle of it uniformly
+//   power:   a light by its emitted power, then a triangle by area x radiance (EmitterGpu.pmf)
+//   bvh:     a light by the light BVH at the shading point, then a triangle as for power
+const uint kLightSelectUniform = 0u;
+const uint kLightSelectPower = 1u;
+const uint kLightSelectBvh = 2u;
+
 // How a method picks light i (host/cms/method_lights.h builds one per light of the scene): the
 // light-selection distribution and, for the methods with light clusters, the cluster the light
 // belongs to and its fixed probability inside it. Read through LIGHT_SELECT_PMF(i),
@@ -142,8 +154,8 @@ struct LightBvhNodeGpu {
 struct EmitterGpu {
   uint triangle;       // BVH-order triangle index
   uint light;
-  float pmf;           // probability inside its light
-  float cdf;           // inclusive prefix sum inside its light
+  float pmf;           // probability inside its light by area x radiance (uniform selection: 1 / count)
+  float cdf;           // inclusive prefix sum of pmf inside its light
 };
 
 // CMS path state: what the next depth needs to settle a vertex's BSDF sample (its control-variate

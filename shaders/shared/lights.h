@@ -5,7 +5,9 @@
 // The includer defines the buffer accessors LIGHT(i), EMITTER(i), TRIANGLE(i), TRIANGLE_SHADING(i),
 // MATERIAL(i) (and TEXTURE(i), TEXEL(i) for texture.h), the method's selection distribution
 // LIGHT_SELECT_PMF(i) and LIGHT_SELECT_CDF(i) (LightSelectionGpu), and the feature switches HAS_TEXTURES,
-// HAS_AREA_LIGHTS, HAS_PUNCTUAL_LIGHTS and SINGLE_LIGHT (specialization constants on the GPU).
+// HAS_AREA_LIGHTS, HAS_PUNCTUAL_LIGHTS and SINGLE_LIGHT (specialization constants on the GPU), and
+// EMITTERS_UNIFORM: true where the method's selection is uniform (kLightSelectUniform), which picks
+// the triangle inside a light uniformly instead of by EmitterGpu.pmf.
 #ifndef MIXTRACE_SHARED_LIGHTS_H
 #define MIXTRACE_SHARED_LIGHTS_H
 #include "shared/constants.h"
@@ -16,6 +18,9 @@
 #include "shared/texture.h"
 #ifdef LIGHT_BVH
 #include "shared/light_bvh.h"
+#endif
+#ifndef EMITTERS_UNIFORM
+#error "define EMITTERS_UNIFORM (the method's selection is uniform) before including shared/lights.h"
 #endif
 SHARED_BEGIN_WITH_BUFFERS
 
@@ -49,7 +54,10 @@ SHARED_FN float lightSelectPmf(uint light) {
   return LIGHT_SELECT_PMF(light);
 }
 
+// The emitter of light l for u in [0, 1): uniformly (EMITTERS_UNIFORM), else by the CDF of
+// EmitterGpu.pmf (binary search).
 SHARED_FN uint selectEmitter(LightGpu l, float u) {
+  if (EMITTERS_UNIFORM) return l.firstEmitter + min(uint(u * float(l.emitterCount)), l.emitterCount - 1u);
   uint lo = l.firstEmitter;
   uint hi = l.firstEmitter + l.emitterCount - 1u;
   while (lo < hi) {
@@ -57,6 +65,12 @@ SHARED_FN uint selectEmitter(LightGpu l, float u) {
     if (u < EMITTER(mid).cdf) hi = mid; else lo = mid + 1u;
   }
   return lo;
+}
+
+// The probability of emitter e inside its light, as selectEmitter picks it.
+SHARED_FN float emitterPmf(uint e) {
+  EmitterGpu em = EMITTER(e);
+  return EMITTERS_UNIFORM ? 1.0f / float(LIGHT(em.light).emitterCount) : em.pmf;
 }
 
 // Length of v without squaring its components in float: length() is 0 below ~1e-19 and
@@ -122,7 +136,7 @@ SHARED_FN vec3 emittedRadiance(uint tri, float u, float v, vec3 towardsViewer) {
 SHARED_FN float areaLightPointPdf(uint tri, vec3 from, vec3 lightPoint) {
   int e = TRIANGLE_SHADING(tri).emitter;
   if (e < 0) return 0.0f;
-  return EMITTER(uint(e)).pmf * triangleSolidAnglePdf(TRIANGLE(tri), lightPoint - from);
+  return emitterPmf(uint(e)) * triangleSolidAnglePdf(TRIANGLE(tri), lightPoint - from);
 }
 
 // The method's selection at a point with a normal: the light BVH's (method pt-bvh, where the
@@ -201,7 +215,7 @@ SHARED_FN bool sampleLightPoint(vec3 p, uint light, float uEmitter, vec2 uPoint,
     s.normal = triangleGeometricNormal(g);
     float pointPdf = triangleSolidAnglePdf(g, d);
     if (!(pointPdf > 0.0f)) return false;
-    s.pdf = em.pmf * pointPdf;
+    s.pdf = emitterPmf(e) * pointPdf;
     s.radiance = emittedRadiance(em.triangle, bary.y, bary.z, -d);
     return !isBlack(s.radiance);
   }

@@ -9,6 +9,8 @@
 #define PASS_CONSTANTS DisplayConstants
 #include "gpu/cms_buffers.glsl"
 #include "gpu/buffers.glsl"
+// The display reads only the cells' cluster selection, never a triangle's pmf.
+#define EMITTERS_UNIFORM false
 #include "shared/cms_sampling.h"
 #include "shared/film.h"
 

@@ -19,7 +19,8 @@
 #include "gpu/buffers.glsl"
 // pt-bvh picks lights by the method's light BVH (shared/light_bvh.h, through shared/lights.h).
 #define LIGHT_BVH(i) lightBvh[i]
-#define LIGHT_SELECT_BVH (pc.lightBvh != 0u)
+#define LIGHT_SELECT_BVH (pc.lightSelection == kLightSelectBvh)
+#define EMITTERS_UNIFORM (pc.lightSelection == kLightSelectUniform)
 #include "gpu/cms_statistics.glsl"
 #include "shared/bsdf.h"
 #include "shared/cms_sampling.h"

@@ -38,7 +38,7 @@ struct VertexConstants {
   vec3 gridOrigin;        // CMS: the cell grid's origin (scene bounds minimum)
   float gridInvCellSize;
   uint gatherStatistics;  // CMS: 1 when a later solve reads this sample pass's statistics
-  uint lightBvh;          // 1: lights chosen by the light BVH (pt-bvh), else by the selection table
+  uint lightSelection;    // the method's kLightSelect* (shared/layouts.h): the table's or the light BVH's
   uint pairCapacity;      // per-triangle CV: slots of the (cell, technique) pair table (a power of two)
   uint emitterCount;      // per-triangle CV: technique sources of punctual lights start here
 };

@@ -13,6 +13,7 @@
 #define PASS_CONSTANTS VertexConstants
 #include "gpu/cms_buffers.glsl"
 #include "gpu/buffers.glsl"
+#define EMITTERS_UNIFORM (pc.lightSelection == kLightSelectUniform)
 #include "gpu/cms_statistics.glsl"
 #include "shared/bvh_traverse.h"
 #include "shared/cms_sampling.h"

@@ -46,7 +46,7 @@ void expectValidClusters(const PreparedScene& scene, const LightClusters& lc, ui
     ASSERT_LE(next, n);
     bool area = isArea(scene, lc.clusterLights[cl.firstLight]);
     EXPECT_EQ(cl.kind, area ? shared::kClusterArea : shared::kClusterDelta);
-    double pmfSum = 0.0, power = 0.0;
+    double pmfSum = 0.0, power = 0.0, triangles = 0.0;
     for (uint32_t j = cl.firstLight; j < cl.firstLight + cl.lightCount; ++j) {
       uint32_t light = lc.clusterLights[j];
       ASSERT_LT(light, n);
@@ -56,13 +56,18 @@ void expectValidClusters(const PreparedScene& scene, const LightClusters& lc, ui
       EXPECT_GE(lc.lightPmfInCluster[light], 0.0f);
       pmfSum += lc.lightPmfInCluster[light];
       power += scene.lights.power[light];
+      triangles += uniformSelectionWeight(scene.lights.lights[light]);
     }
     EXPECT_NEAR(pmfSum, 1.0, 1e-5) << "cluster " << c;
     EXPECT_NEAR(cl.power, power, 1e-5 * power + 1e-30);
-    // Power-proportional inside the cluster.
-    if (power > 0.0)
-      for (uint32_t j = cl.firstLight; j < cl.firstLight + cl.lightCount; ++j)
-        EXPECT_NEAR(lc.lightPmfInCluster[lc.clusterLights[j]], scene.lights.power[lc.clusterLights[j]] / power, 1e-5);
+    // Inside the cluster: by triangle count (uniform selection), else power-proportional.
+    for (uint32_t j = cl.firstLight; j < cl.firstLight + cl.lightCount; ++j) {
+      const uint32_t light = lc.clusterLights[j];
+      if (lc.uniformEmitters)
+        EXPECT_NEAR(lc.lightPmfInCluster[light], uniformSelectionWeight(scene.lights.lights[light]) / triangles, 1e-5);
+      else if (power > 0.0)
+        EXPECT_NEAR(lc.lightPmfInCluster[light], scene.lights.power[light] / power, 1e-5);
+    }
     EXPECT_GE(lc.defaultSelection[c], 0.0f);
     selectionSum += lc.defaultSelection[c];
   }
@@ -296,10 +301,22 @@ TEST(LightClusters, DefaultSelections) {
   LightClusters uniform = buildLightClusters(scene, L, ClusterSelection::UniformOverClusters);
   for (float c : uniform.defaultSelection) EXPECT_NEAR(c, 1.0f / L, 1e-6f);
 
+  // Uniform: each cluster its triangles' share, each light its triangle count inside the cluster,
+  // so with a uniform triangle inside the light every emissive triangle (and punctual light) has
+  // probability 1 / N, as uniform selection gives it.
   LightClusters count = buildLightClusters(scene, L, LightSelection::Uniform);
-  float n = float(scene.lights.lights.size());
-  for (size_t c = 0; c < count.clusters.size(); ++c)
-    EXPECT_NEAR(count.defaultSelection[c], float(count.clusters[c].lightCount) / n, 1e-6f);
+  EXPECT_TRUE(count.uniformEmitters);
+  EXPECT_FALSE(buildLightClusters(scene, L, LightSelection::Power).uniformEmitters);
+  double sources = 0.0;
+  for (const shared::LightGpu& l : scene.lights.lights) sources += uniformSelectionWeight(l);
+  const std::vector<shared::LightSelectionGpu> uniformTable = buildLightSelection(scene.lights, LightSelection::Uniform);
+  for (uint32_t i = 0; i < scene.lights.lights.size(); ++i) {
+    const shared::LightGpu& l = scene.lights.lights[i];
+    const double perTriangle = l.kind == shared::kLightArea ? 1.0 / double(l.emitterCount) : 1.0;
+    const double p = double(count.defaultSelection[count.lightCluster[i]]) * count.lightPmfInCluster[i] * perTriangle;
+    EXPECT_NEAR(p * sources, 1.0, 1e-4) << "light " << i;
+    EXPECT_NEAR(uniformTable[i].pmf * perTriangle * sources, 1.0, 1e-4) << "light " << i;
+  }
 
   // Power over clusters times power inside: the light set's power selection, light by light.
   LightClusters power = buildLightClusters(scene, L, LightSelection::Power);

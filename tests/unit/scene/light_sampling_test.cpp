@@ -17,9 +17,11 @@
 namespace light_sampling_test {
 const mixtrace::PreparedScene* gScene = nullptr;
 const std::vector<mixtrace::shared::LightSelectionGpu>* gSelection = nullptr;
+bool gUniformEmitters = false;
 }
 #define SHARED_SCENE (*::light_sampling_test::gScene)
 #define SHARED_LIGHT_SELECTION (*::light_sampling_test::gSelection)
+#define SHARED_UNIFORM_EMITTERS (::light_sampling_test::gUniformEmitters)
 #include "scene/shared_scene_access.h"
 #include "support/chi2.h"
 #include "support/shipped_scenes.h"
@@ -36,6 +38,7 @@ TEST_P(LightSamplingOnScene, ReturnedPdfEqualsEvaluatedPdf) {
     const std::vector<shared::LightSelectionGpu> table = buildLightSelection(scene.lights, selection);
     light_sampling_test::gScene = &scene;
     light_sampling_test::gSelection = &table;
+    light_sampling_test::gUniformEmitters = selection == LightSelection::Uniform;
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     const Bounds& b = scene.scene.bounds;
@@ -61,6 +64,58 @@ TEST_P(LightSamplingOnScene, ReturnedPdfEqualsEvaluatedPdf) {
   }
 }
 
+// Uniform selection is uniform over emissive triangles and punctual lights (the paper's baseline,
+// pbrt-v4's uniform light sampler): the triangles a light sample lands on follow 1 / N (chi-square),
+// and the selection part of every returned pdf is exactly 1 / N.
+TEST_P(LightSamplingOnScene, UniformSelectionIsUniformOverTriangles) {
+  PreparedScene scene = prepareScene(loadGltf(GetParam()));
+  const std::vector<shared::LightSelectionGpu> table = buildLightSelection(scene.lights, LightSelection::Uniform);
+  light_sampling_test::gScene = &scene;
+  light_sampling_test::gSelection = &table;
+  light_sampling_test::gUniformEmitters = true;
+  const uint32_t lightCount = uint32_t(scene.lights.lights.size());
+  const uint32_t emitters = uint32_t(scene.lights.emitters.size());
+  // One bin per emitter, then one per light (the punctual ones).
+  const uint32_t bins = emitters + lightCount;
+  uint32_t sources = 0;
+  for (const shared::LightGpu& l : scene.lights.lights) sources += l.kind == shared::kLightArea ? l.emitterCount : 1u;
+  if (sources < 2) GTEST_SKIP() << "one light source: nothing to choose";
+  const double pmf = 1.0 / double(sources);
+  std::vector<double> counts(bins, 0.0), expected(bins, 0.0);
+  for (uint32_t e = 0; e < emitters; ++e) expected[e] = pmf;
+  for (uint32_t i = 0; i < lightCount; ++i)
+    if (scene.lights.lights[i].kind != shared::kLightArea) expected[emitters + i] = pmf;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const glm::vec3 p = scene.scene.bounds.center();
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    shared::LightSample s;
+    shared::sampleLight(p, lightCount, u(rng), u(rng), glm::vec2(u(rng), u(rng)), s);
+    if (s.isDelta) {
+      counts[emitters + s.light] += 1.0;
+      ASSERT_NEAR(s.pdf, pmf, 1e-6 * pmf);
+      continue;
+    }
+    const int32_t e = scene.shading[s.triangle].emitter;
+    ASSERT_GE(e, 0);
+    counts[uint32_t(e)] += 1.0;
+    float point = shared::triangleSolidAnglePdf(scene.bvh.triangles[s.triangle], s.position - p);
+    if (s.pdf > 0.0f && point > 0.0f) ASSERT_NEAR(s.pdf / point / pmf, 1.0, 1e-4) << "sample " << i;
+  }
+  std::vector<double> observed, wanted;   // the source bins only (an area light's own bin holds none)
+  for (uint32_t b = 0; b < bins; ++b) {
+    if (expected[b] > 0.0) {
+      observed.push_back(counts[b]);
+      wanted.push_back(expected[b] * n);
+    } else {
+      EXPECT_EQ(counts[b], 0.0);
+    }
+  }
+  chi2::ChiSquareResult r = chi2::chiSquareTest(observed, wanted);
+  EXPECT_GT(r.pValue, 1e-3) << "chi2 " << r.statistic << " dof " << r.dof;
+}
+
 TEST_P(LightSamplingOnScene, SelectionFollowsPmf) {
   PreparedScene scene = prepareScene(loadGltf(GetParam()));
   const std::vector<shared::LightSelectionGpu> lights = buildLightSelection(scene.lights, LightSelection::Power);
@@ -82,6 +137,11 @@ TEST_P(LightSamplingOnScene, SelectionFollowsPmf) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, LightSamplingOnScene, ::testing::ValuesIn(shippedScenes()),
+                         [](const auto& info) { return fs::path(info.param).stem().string(); });
+// The paper's Modern Hall: lights of 2 and of 270 triangles, where uniform over triangles and
+// uniform over lights differ most.
+INSTANTIATE_TEST_SUITE_P(Paper, LightSamplingOnScene,
+                         ::testing::Values(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/paper/ModernHall/ModernHall.gltf"),
                          [](const auto& info) { return fs::path(info.param).stem().string(); });
 
 // Irradiance at a point from a unit-radiance quad: E = 1/2 * sum_edges angle_i * (n . unit(r_i x r_i+1))
