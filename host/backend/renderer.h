@@ -46,7 +46,8 @@ inline shared::SolveParams solveParamsFor(const RenderSettings& s, uint32_t cell
   params.clusterCount = clusters;
   params.minSamples = s.minCellSamples;
   params.flags = (s.cms.learnSelection ? shared::kSolveLearnSelection : 0u) |
-                 (s.cms.controlVariate ? shared::kSolveControlVariate : 0u);
+                 (s.cms.controlVariate ? shared::kSolveControlVariate : 0u) |
+                 (s.cms.defaults == LightSelection::Bvh ? shared::kSolveBvhDefaults : 0u);
   params.ridge = s.ridge;
   params.defensive = s.defensive;
   return params;

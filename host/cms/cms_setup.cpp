@@ -22,7 +22,7 @@ CmsScene setUpClusters(const PreparedScene& scene, std::vector<shared::LightSele
   CmsScene cms;
   cms.clusters = buildLightClusters(scene, maxClusters, defaults);
   LightClusters& c = cms.clusters;
-  if (defaults == LightSelection::Power) {
+  if (defaults != LightSelection::Uniform) {
     // The defaults are also the defensive part of a learned selection (docs/estimator.md §7). Half
     // of it uniform over clusters keeps every c_k >= eps / (2 L): the control-variate term of a
     // light sample, about alpha_k / c_k, stays bounded even for a cluster of very little power.

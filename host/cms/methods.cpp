@@ -10,10 +10,10 @@ const std::vector<MethodInfo>& methodTable() {
       // name, summary, selection, clusters, learnSelection, controlVariate, viewerKey
       {"pt-uniform", "MIS path tracer, every emissive triangle equally likely", LightSelection::Uniform, false, false, false, '1'},
       {"pt-power", "MIS path tracer, light picked by power", LightSelection::Power, false, false, false, '2'},
-      {"learned", "per-cell learned cluster selection, no control variate", LightSelection::Power, true, true,
+      {"learned", "per-cell learned cluster selection, no control variate", LightSelection::Bvh, true, true,
        false, '3'},
       {"cv", "control variate per cell, selection kept fixed", LightSelection::Uniform, true, false, true, '4'},
-      {"cms", "control variate and learned selection (Hua et al. 2023)", LightSelection::Power, true, true, true,
+      {"cms", "control variate and learned selection (Hua et al. 2023)", LightSelection::Bvh, true, true, true,
        '5'},
       {"pt-bvh", "MIS path tracer, light picked by a light BVH", LightSelection::Bvh, false, false, false, '6'},
   };

@@ -156,25 +156,36 @@ CellSolution solveCellReference(const double* stats, uint32_t samples, uint32_t 
                std::isfinite(weightSum);
   double eps = std::isfinite(params.defensive) ? std::clamp(double(params.defensive), double(shared::kSolveMinDefensive), 1.0)
                                                : 1.0;
+  // With the BVH defaults only the learned part is stored (kSolveBvhDefaults); delta = 1 - sum c
+  // is the defaults' share, so the vector is compared with that share appended.
+  const bool bvhDefaults = (params.flags & shared::kSolveBvhDefaults) != 0;
   double selectSum = 0.0;
   for (uint32_t k = 0; k < L; ++k) {
-    double c = learn ? (1.0 - eps) * weight[k] / weightSum + eps * d[k] : d[k];
-    if (d[k] > 0.0) c = std::max(c, 1e-30);
+    double c = bvhDefaults ? (learn ? (1.0 - eps) * weight[k] / weightSum : 0.0)
+                           : (learn ? (1.0 - eps) * weight[k] / weightSum + eps * d[k] : d[k]);
+    if (d[k] > 0.0 && !bvhDefaults) c = std::max(c, 1e-30);
     out.select[k] = c;
     selectSum += c;
   }
-  for (double& c : out.select) c /= selectSum;
+  if (!bvhDefaults)
+    for (double& c : out.select) c /= selectSum;
 
   // Keep the previous selection (and the statistics gathered under it) unless there is none yet,
   // or the cell is solved and its selection moved by more than the threshold in total variation.
   bool previousValid = previousSelect != nullptr;
-  double previousSum = 0.0, change = 0.0;
+  double previousSum = 0.0, change = 0.0, newSum = 0.0;
   for (uint32_t k = 0; previousValid && k < L; ++k) {
     previousValid = std::isfinite(previousSelect[k]) && previousSelect[k] >= 0.0f;
     previousSum += previousSelect[k];
+    newSum += out.select[k];
     change += std::abs(out.select[k] - previousSelect[k]);
   }
-  previousValid = previousValid && std::abs(previousSum - 1.0) <= 1e-3;
+  if (bvhDefaults) {
+    change += std::abs((1.0 - newSum) - (1.0 - previousSum));
+    previousValid = previousValid && previousSum <= 1.0 + 1e-3;
+  } else {
+    previousValid = previousValid && std::abs(previousSum - 1.0) <= 1e-3;
+  }
   bool adopt = !previousValid || (out.solved && 0.5 * change > shared::kSelectionChangeThreshold);
   if (!adopt)
     for (uint32_t k = 0; k < L; ++k) out.select[k] = previousSelect[k];

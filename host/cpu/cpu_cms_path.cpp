@@ -21,6 +21,7 @@ struct PendingBsdfSample {
   uint32_t cell = kNoCell;
   glm::vec3 throughput{0.0f};    // path throughput at the vertex that drew it
   glm::vec3 bsdfCos{0.0f};       // bsdf * |cos| of its direction
+  glm::vec3 normal{0.0f};        // the vertex's geometric normal (the BVH defaults' selection)
 };
 
 // What the steps below know of a surface vertex (shade.comp's Vertex).
@@ -92,7 +93,8 @@ class CmsPath {
                                 vec3 le, vec3 from) {
     float pj;
     uint j = clusterOfBsdfHit(hit.triangle, le, from, sh.position, pj);
-    float peff = bsdfSampleMixtureDensity(pending.cell, L_, j, pj, pending.pdf);
+    float cj = bsdfHitClusterWeight(pending.cell, L_, j, hit.triangle, from, pending.normal);
+    float peff = bsdfSampleMixtureDensity(j, cj, pj, pending.pdf);
     const double w = cells_.statisticsWeight(pending.cell, pending.throughput, ctx_.pixel);
     const bool cv = controlVariate_ && cellSolutionValid(pending.cell, L_);
     if (pairs_) {
@@ -133,13 +135,15 @@ class CmsPath {
     vec2 uPoint(uPointX, uPointY);
     if (ctx_.lightCount == 0) return;
     uint k;
-    float pk;
+    float pk, ck;
     LightSample ls;
-    bool carries = sampleClusterLight(v.cell, L_, v.sh.position, uLight, uEmitter, uPoint, rng, k, pk, ls);
+    bool carries = sampleClusterLight(v.cell, L_, v.sh.position, v.next, v.sh.geometricNormal, uLight, uEmitter,
+                                      uPoint, rng, k, pk, ck, ls);
+    if (k == kNoCell) return;   // the defaults' BVH reached no light: no sample, nothing to pay
     const bool cmsTerms = v.cell != kNoCell;
     if (!(ls.pdf > 0.0f || cmsTerms)) return;
     vec3 wi = toLocal(v.frame, ls.direction);
-    const bool reachable = lightPointReachable(v.cell, L_, k, v.sh.geometricNormal, carries, pk, ls);
+    const bool reachable = lightPointReachable(ck, v.sh.geometricNormal, carries, pk, ls);
     float pB;
     vec3 f = lightSampleIntegrand(v.bsdf, v.wo, wi, ls, reachable, pB);
     float peff = lightSampleMixtureDensity(ls.pdf, pB);
@@ -201,6 +205,7 @@ class CmsPath {
     pending.cell = v.cell;
     pending.throughput = v.beta;
     pending.bsdfCos = bsdfCos;
+    pending.normal = v.sh.geometricNormal;
     beta *= bsdfCos / pdf;
     return true;
   }

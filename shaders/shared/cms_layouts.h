@@ -60,6 +60,10 @@ const uint kSolveControlVariate = 2u;   // write alpha (methods cv, cms); else a
 // weights (the slots end as without kSolveControlVariate), and solutionAlphaB, solutionValid and
 // solutionAlphaSum keep what the sparse solve wrote. Overrides kSolveControlVariate.
 const uint kSolveKeepControlVariate = 4u;
+// The defaults are the light BVH at each vertex (shared/cms_sampling.h): the selection slots hold
+// only the learned part, c_k = (1 - eps) w_k / sum w (all 0 while the cell has learned nothing),
+// and the rest of the probability, delta = 1 - sum c_k, is the defaults'.
+const uint kSolveBvhDefaults = 8u;
 
 // Push constants of the solve pass (cms/solve_interface.h): the whole range of its pipeline layout
 // (host/vulkan/layout_checks.cpp checks that it fits the guaranteed 128 bytes).

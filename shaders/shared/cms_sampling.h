@@ -8,6 +8,17 @@
 // light's pmf inside its cluster), CLUSTER(i) -> ClusterGpu,
 // CLUSTER_LIGHT(i) -> ClusterLightGpu, CELL_SOLUTION(i) -> float (the solve pass's output) and
 // CLUSTER_DEFAULT(k) -> float (the default selection pmf).
+//
+// The light BVH as the default selection (learned and cms, docs/estimator.md §7): where the
+// includer defines LIGHT_BVH(i) and LIGHT_SELECT_BVH is true, the cell's stored c_k are only the
+// learned part of its selection, (1 - eps) w_k / sum w, summing to 1 - delta, and the rest, delta
+// (1 before the cell has learned anything, eps after), goes to the defaults at the vertex: the
+// light BVH at the vertex's point and normal, with a share kBvhDefaultsTableShare of the table's
+// defaults d_k. A light's probability at the vertex is then
+//     P(l | x) = c_k q_l|k + delta ((1 - s) P_bvh(l | x) + s d_k q_l|k)
+// with q_l|k its fixed pmf inside its cluster k and s = kBvhDefaultsTableShare. The table part keeps
+// every cluster's lights sampled where the BVH gives them nothing (a light behind the surface):
+// the control variate's g must be sampled wherever it is non-zero (§3).
 #ifndef MIXTRACE_SHARED_CMS_SAMPLING_H
 #define MIXTRACE_SHARED_CMS_SAMPLING_H
 #include "shared/cluster_layout.h"
@@ -16,12 +27,31 @@
 #include "shared/dialect.h"
 #include "shared/layouts.h"
 #include "shared/lights.h"
+#ifdef LIGHT_BVH
+#define CMS_BVH_DEFAULTS (LIGHT_SELECT_BVH)
+#else
+#define CMS_BVH_DEFAULTS false
+#endif
 SHARED_BEGIN_WITH_BUFFERS
 
-// c_k at a vertex in `cell` (kNoCell: the defaults).
+// The table defaults' share inside the BVH defaults (s above).
+const float kBvhDefaultsTableShare = 0.1f;
+// selectVertexLight's answer where no light was drawn.
+const uint kNoVertexLight = 0xffffffffu;
+
+// c_k at a vertex in `cell` (kNoCell: the defaults; with the BVH defaults, none of it learned).
 SHARED_FN float clusterSelectPmf(uint cell, uint L, uint k) {
-  if (cell == kNoCell) return CLUSTER_DEFAULT(k);
+  if (cell == kNoCell) return CMS_BVH_DEFAULTS ? 0.0f : CLUSTER_DEFAULT(k);
   return CELL_SOLUTION(cell * cellSolutionStride(L) + solutionSelect(L, k));
+}
+
+// delta, the defaults' share at a vertex of `cell`: 1 - sum_k c_k with the BVH defaults, else 0
+// (the stored c_k hold the defaults themselves).
+SHARED_FN float defaultsShare(uint cell, uint L) {
+  if (!CMS_BVH_DEFAULTS) return 0.0f;
+  float learned = 0.0f;
+  for (uint k = 0u; k < L; ++k) learned += clusterSelectPmf(cell, L, k);
+  return clamp(1.0f - learned, 0.0f, 1.0f);
 }
 
 // Inverts the cell's selection CDF by a linear scan (L <= 32); never returns an empty cluster
@@ -48,6 +78,57 @@ SHARED_FN uint selectLightInCluster(uint k, float u) {
     if (u < CLUSTER_LIGHT(mid).cdf) hi = mid; else lo = mid + 1u;
   }
   return CLUSTER_LIGHT(lo).light;
+}
+
+// The scan over the table's defaults d_k (selectCluster's, for the defaults part).
+SHARED_FN uint selectDefaultCluster(uint L, float u) {
+  float cdf = 0.0f;
+  uint last = 0u;
+  for (uint k = 0u; k < L; ++k) {
+    float c = CLUSTER_DEFAULT(k);
+    if (!(c > 0.0f)) continue;
+    last = k;
+    cdf += c;
+    if (u < cdf) return k;
+  }
+  return last;
+}
+
+// The effective c_k of `light` at a vertex of `cell` at (p, n): P(l | x) / q_l|k, so that the light
+// density of any point on it is this times p_k (the cluster technique's density). Without the BVH
+// defaults exactly the cell's c_k.
+SHARED_FN float vertexClusterWeight(uint cell, uint L, uint light, vec3 p, vec3 n, float delta) {
+  uint k = LIGHT_CLUSTER(light);
+  float c = clusterSelectPmf(cell, L, k);
+#ifdef LIGHT_BVH
+  if (delta > 0.0f) {
+    float q = LIGHT_CLUSTER_PMF(light);
+    if (!(q > 0.0f)) return c;   // never sampled inside its cluster: p_k = 0 on it anyway
+    c += delta * ((1.0f - kBvhDefaultsTableShare) * lightBvhPmf(p, n, light) / q +
+                  kBvhDefaultsTableShare * CLUSTER_DEFAULT(k));
+  }
+#endif
+  return c;
+}
+
+// The light of a light sample at a vertex of `cell`: from the cell's learned selection (a cluster,
+// then a light inside it by uInCluster) with probability 1 - delta, else from the defaults (the
+// light BVH at (p, n), or the table's d_k). kNoVertexLight where the BVH reaches no light (the
+// sample is then not drawn: a defective density counts nothing, §3).
+SHARED_FN uint selectVertexLight(uint cell, uint L, vec3 p, vec3 n, float u, float uInCluster, float delta) {
+#ifdef LIGHT_BVH
+  if (delta > 0.0f && !(u < 1.0f - delta)) {
+    float v = min((u - (1.0f - delta)) / delta, kLightBvhOneMinusEpsilon);
+    if (v < 1.0f - kBvhDefaultsTableShare) {
+      float pmf;
+      uint light = selectLightBvh(p, n, min(v / (1.0f - kBvhDefaultsTableShare), kLightBvhOneMinusEpsilon), pmf);
+      return pmf > 0.0f ? light : kNoVertexLight;
+    }
+    float w = min((v - (1.0f - kBvhDefaultsTableShare)) / kBvhDefaultsTableShare, kLightBvhOneMinusEpsilon);
+    return selectLightInCluster(selectDefaultCluster(L, w), uInCluster);
+  }
+#endif
+  return selectLightInCluster(selectCluster(cell, L, u), uInCluster);
 }
 
 // p_k(z) for the point `lightPoint` on emitting triangle `tri` seen from `from`: the density of

@@ -32,7 +32,10 @@
 //     defaults d are sanitised (non-finite or negative entries count as 0) and normalised (uniform
 //     when they sum to 0); eps is clamped to [kSolveMinDefensive, 1] so that every cluster with
 //     d_k > 0 keeps c_k > 0 (a light that can never be selected would bias the estimate); c is
-//     normalised to sum 1.
+//     normalised to sum 1. With kSolveBvhDefaults only the learned part is stored, c_k =
+//     (1 - eps) w_k / sum w when learning and 0 otherwise, not normalised: the rest, 1 - sum c_k,
+//     is the share of the defaults, the light BVH at each vertex (shared/cms_sampling.h), and
+//     counts as one more entry of the selection in the total-variation test below.
 //   - Statistics persist across iterations (more samples, better alpha) as long as they estimate
 //     the same system. A and b depend on the selection through p_eff, so when the new selection
 //     differs from the one the cell used so far by more than kSelectionChangeThreshold in total
@@ -143,11 +146,13 @@ SHARED_FN float cmsSelectionWeight(vec3 alpha) {
 // c_k before normalisation: the defaults d (sanitised, normalised) or, when learning,
 // (1 - eps) w_k / sum w + eps d_k with w_k from the alpha just written to the solution.
 SHARED_FN float cmsNewSelection(uint solution, uint L, uint k, bool learn, float eps, float weightSum,
-                                bool uniformDefaults, float defaultSum) {
+                                bool uniformDefaults, float defaultSum, bool bvhDefaults) {
+  float learned = learn ? (1.0f - eps) * (cmsSelectionWeight(cmsReadSolution3(solution + solutionAlpha(L, k, 0u))) / weightSum)
+                        : 0.0f;
+  if (bvhDefaults) return learned;   // the defaults' share is the rest, 1 - sum c
   float d = CLUSTER_DEFAULT(k);
   d = uniformDefaults ? 1.0f / float(L) : ((cmsIsFinite(d) && d > 0.0f) ? d / defaultSum : 0.0f);
-  float c = d;
-  if (learn) c = (1.0f - eps) * (cmsSelectionWeight(cmsReadSolution3(solution + solutionAlpha(L, k, 0u))) / weightSum) + eps * d;
+  float c = learn ? learned + eps * d : d;
   if (d > 0.0f) c = max(c, 1e-30f);   // eps * d can underflow for a tiny default
   return c;
 }
@@ -242,30 +247,34 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
   bool uniformDefaults = !(defaultSum > 0.0f) || !cmsIsFinite(defaultSum);
   float eps = cmsIsFinite(params.defensive) ? clamp(params.defensive, kSolveMinDefensive, 1.0f) : 1.0f;
 
-  // The new selection (unnormalised here, divided by selectSum), and its distance to the old one.
+  // The new selection (unnormalised here, divided by selectSum; with the BVH defaults stored as it
+  // is), and its distance to the old one.
+  bool bvhDefaults = (params.flags & kSolveBvhDefaults) != 0u;
   float selectSum = 0.0f;
   float oldSum = 0.0f;
   bool oldUsable = true;
   for (uint k = 0u; k < L; ++k) {
-    selectSum += cmsNewSelection(solution, L, k, learn, eps, weightSum, uniformDefaults, defaultSum);
+    selectSum += cmsNewSelection(solution, L, k, learn, eps, weightSum, uniformDefaults, defaultSum, bvhDefaults);
     float old = CELL_SOLUTION(solution + solutionSelect(L, k));
     oldUsable = oldUsable && cmsIsFinite(old) && old >= 0.0f;
     if (oldUsable) oldSum += old;
   }
+  float norm = bvhDefaults ? 1.0f : selectSum;
   float change = 0.0f;
   for (uint k = 0u; k < L; ++k) {
-    float c = cmsNewSelection(solution, L, k, learn, eps, weightSum, uniformDefaults, defaultSum) / selectSum;
+    float c = cmsNewSelection(solution, L, k, learn, eps, weightSum, uniformDefaults, defaultSum, bvhDefaults) / norm;
     float old = CELL_SOLUTION(solution + solutionSelect(L, k));
     if (oldUsable) change += abs(c - old);
   }
+  if (bvhDefaults && oldUsable) change += abs((1.0f - selectSum) - (1.0f - oldSum));   // the defaults' share
   // A cell without a valid selection yet adopts the new one; a solved cell adopts it when it moved
   // far enough; an unsolved one (too few samples so far) keeps its selection and accumulates on.
-  bool oldValid = oldUsable && abs(oldSum - 1.0f) <= 1e-3f;
+  bool oldValid = oldUsable && (bvhDefaults ? oldSum <= 1.0f + 1e-3f : abs(oldSum - 1.0f) <= 1e-3f);
   bool adopt = !oldValid || (solved && !(0.5f * change <= kSelectionChangeThreshold));
   for (uint k = 0u; k < L; ++k) {
     if (adopt)
       CELL_SOLUTION(solution + solutionSelect(L, k)) =
-          cmsNewSelection(solution, L, k, learn, eps, weightSum, uniformDefaults, defaultSum) / selectSum;
+          cmsNewSelection(solution, L, k, learn, eps, weightSum, uniformDefaults, defaultSum, bvhDefaults) / norm;
     if (!writeAlpha) cmsWriteSolution3(solution + solutionAlpha(L, k, 0u), vec3(0.0f));
   }
   // Statistics holding NaN/Inf would keep the cell unsolved for good: they restart too.

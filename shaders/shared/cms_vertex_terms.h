@@ -33,16 +33,30 @@ SHARED_BEGIN_WITH_BUFFERS
 // ---- Densities (docs/estimator.md §1, §2) ----
 
 // The light sample through the cell's clusters: a cluster k from the cell's selection c, a light
-// inside it with its fixed pmf (one more random number), a point on that light. On return
-// ls.pdf is the sample's light-sampling density c_k p_k(z) and pk is p_k(z). Returns whether the
-// point carries light towards `position` (lights.h sampleLightPoint).
-SHARED_FN bool sampleClusterLight(uint cell, uint L, vec3 position, float uLight, float uEmitter, vec2 uPoint,
-                                  INOUT(uint) rng, OUT(uint) k, OUT(float) pk, OUT(LightSample) ls) {
-  k = selectCluster(cell, L, uLight);
-  uint light = selectLightInCluster(k, rngNextFloat(rng));
+// inside it with its fixed pmf (one more random number), a point on that light; with the BVH
+// defaults (cms_sampling.h) the light comes from the defaults with probability delta, chosen at
+// (selectFrom, selectNormal): the ray origin and geometric normal, as the vertex's BSDF sample
+// is weighed (bsdfHitClusterWeight). On return ck is the light's effective c_k
+// (vertexClusterWeight), ls.pdf the sample's light-sampling density c_k p_k(z) and pk is p_k(z).
+// Returns whether the point carries light towards `position` (lights.h sampleLightPoint); k is
+// kNoCell where no light was drawn (the BVH reaches none): the sample then counts nothing.
+SHARED_FN bool sampleClusterLight(uint cell, uint L, vec3 position, vec3 selectFrom, vec3 selectNormal, float uLight,
+                                  float uEmitter, vec2 uPoint, INOUT(uint) rng, OUT(uint) k, OUT(float) pk,
+                                  OUT(float) ck, OUT(LightSample) ls) {
+  float delta = defaultsShare(cell, L);
+  uint light = selectVertexLight(cell, L, selectFrom, selectNormal, uLight, rngNextFloat(rng), delta);
+  k = kNoCell;
+  pk = 0.0f;
+  ck = 0.0f;
+  if (light == kNoVertexLight) {
+    ls.pdf = 0.0f;
+    return false;
+  }
+  k = LIGHT_CLUSTER(light);
   bool carries = sampleLightPoint(position, light, uEmitter, uPoint, ls);
   pk = LIGHT_CLUSTER_PMF(light) * ls.pdf;
-  ls.pdf = clusterSelectPmf(cell, L, k) * pk;
+  ck = vertexClusterWeight(cell, L, light, selectFrom, selectNormal, delta);
+  ls.pdf = ck * pk;
   return carries;
 }
 
@@ -54,14 +68,13 @@ SHARED_FN bool sampleClusterLight(uint cell, uint L, vec3 position, float uLight
 // density stays the density of its own samples. A point without density takes, with clusters,
 // p_k = 1 and light density c_k: p_k is in the light's own area measure and the terms only need
 // ratios, so any positive p_k does. (Without clusters, a sample without density is not used.)
-SHARED_FN bool lightPointReachable(uint cell, uint L, uint k, vec3 n, bool carries, INOUT(float) pk,
-                                   INOUT(LightSample) ls) {
+SHARED_FN bool lightPointReachable(float ck, vec3 n, bool carries, INOUT(float) pk, INOUT(LightSample) ls) {
   bool above = dot(ls.direction, n) > 0.0f;
   if (!(ls.pdf > 0.0f)) {
     above = false;
     carries = false;
     pk = 1.0f;
-    ls.pdf = clusterSelectPmf(cell, L, k);
+    ls.pdf = ck;
   }
   return above && carries;
 }
@@ -90,10 +103,19 @@ SHARED_FN uint clusterOfBsdfHit(uint tri, vec3 le, vec3 from, vec3 point, OUT(fl
   return LIGHT_CLUSTER(lightOfTriangle(tri));
 }
 
+// The effective c_j of the light of triangle `tri` (of cluster j) for a BSDF sample drawn at a
+// vertex of `cell` whose light sample was chosen at (selectFrom, selectNormal): the cell's c_j, or
+// with the BVH defaults vertexClusterWeight (kNoCell j: 0).
+SHARED_FN float bsdfHitClusterWeight(uint cell, uint L, uint j, uint tri, vec3 selectFrom, vec3 selectNormal) {
+  if (j == kNoCell) return 0.0f;
+  if (!CMS_BVH_DEFAULTS) return clusterSelectPmf(cell, L, j);
+  return vertexClusterWeight(cell, L, lightOfTriangle(tri), selectFrom, selectNormal, defaultsShare(cell, L));
+}
+
 // The mixture density of a BSDF sample of density pB that hit a point of cluster j (kNoCell: no
-// light point): c_j p_j + p_B in the cell's selection.
-SHARED_FN float bsdfSampleMixtureDensity(uint cell, uint L, uint j, float pj, float pB) {
-  return (j != kNoCell ? clusterSelectPmf(cell, L, j) * pj : 0.0f) + pB;
+// light point) whose effective c_j is cj: c_j p_j + p_B.
+SHARED_FN float bsdfSampleMixtureDensity(uint j, float cj, float pj, float pB) {
+  return (j != kNoCell ? cj * pj : 0.0f) + pB;
 }
 
 // The balance heuristic's weight of a sample of density `pdf` with mixture density peff.

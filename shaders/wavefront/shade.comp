@@ -54,7 +54,8 @@ float settlePreviousBsdfSample(uint path, HitRecord hit, SurfaceHit sh, vec3 le,
   uint prevCell = cvState[path].cell;
   float pj;
   uint j = clusterOfBsdfHit(hit.triangle, le, rayOrigin[path], sh.position, pj);
-  float peff = bsdfSampleMixtureDensity(prevCell, L, j, pj, prevPdfB);
+  float cj = bsdfHitClusterWeight(prevCell, L, j, hit.triangle, rayOrigin[path], misNormal[path]);
+  float peff = bsdfSampleMixtureDensity(j, cj, pj, prevPdfB);
   bool cv = CMS_CONTROL_VARIATE && cellSolutionValid(prevCell, L);
   float w = prevCell != kNoCell && passGathersStatistics() ? sampleWeight(cvState[path].throughput, path, prevCell) : 0.0;
   if (CMS_PAIR_TECHNIQUES && j != kNoCell && prevCell != kNoCell && (cv || w > 0.0)) {
@@ -135,8 +136,11 @@ void queueLightSample(Vertex v, INOUT(uint) rng) {
   bool carries;
   uint k = kNoCell;
   float pk = 0.0;
+  float ck = 0.0;
   if (CMS_SELECTION) {
-    carries = sampleClusterLight(v.cell, L, v.sh.position, uLight, uEmitter, uPoint, rng, k, pk, ls);
+    carries = sampleClusterLight(v.cell, L, v.sh.position, v.origin, v.sh.geometricNormal, uLight, uEmitter, uPoint,
+                                 rng, k, pk, ck, ls);
+    if (k == kNoCell) return;   // the defaults' BVH reached no light: no sample, nothing to pay
   } else {
     // Chosen at the rays' origin and the geometric normal: what addEmission's MIS weight of this
     // vertex's BSDF sample has (rayOrigin, misNormal).
@@ -145,12 +149,11 @@ void queueLightSample(Vertex v, INOUT(uint) rng) {
   bool cmsTerms = CMS_SELECTION && v.cell != kNoCell;
   if (!(ls.pdf > 0.0 || cmsTerms)) return;
   vec3 wi = toLocal(v.frame, ls.direction);
-  bool reachable = lightPointReachable(v.cell, L, k, v.sh.geometricNormal, carries, pk, ls);
+  bool reachable = lightPointReachable(ck, v.sh.geometricNormal, carries, pk, ls);
   float pB;
   vec3 f = lightSampleIntegrand(v.bsdf, v.wo, wi, ls, reachable, pB);
   float peff = lightSampleMixtureDensity(ls.pdf, pB);
   vec3 contribution = v.beta * f / peff;
-  float ck = ls.pdf / max(pk, 1e-38);   // the cell's c_k (ls.pdf = c_k p_k)
   uint source = CMS_PAIR_TECHNIQUES && cmsTerms ? techniqueSourceOfLightSample(ls, pc.emitterCount) : 0u;
   if (cmsTerms && !reachable && !CMS_PAIR_TECHNIQUES) {
     settleLightSample(v.cell, k, pk, ck, 0.0, f, v.beta, v.path, source);

@@ -79,9 +79,9 @@ TEST(Methods, CmsSetUpTakesEachRowsFlags) {
   const Expected expected[] = {
       {"pt-uniform", LightSelection::Uniform, false, false, false},
       {"pt-power", LightSelection::Power, false, false, false},
-      {"learned", LightSelection::Power, true, true, false},
+      {"learned", LightSelection::Bvh, true, true, false},
       {"cv", LightSelection::Uniform, true, false, true},
-      {"cms", LightSelection::Power, true, true, true},
+      {"cms", LightSelection::Bvh, true, true, true},
       {"pt-bvh", LightSelection::Bvh, false, false, false},
   };
   ASSERT_EQ(methodTable().size(), std::size(expected));

@@ -73,11 +73,17 @@ void expectNear(double actual, double expected, const char* what, double relativ
 TEST(CmsVertexTerms, MixtureDensitiesAreTheBalanceHeuristicsDenominators) {
   std::mt19937 rng(1);
   setUpCell(rng);
-  // A BSDF sample that hit cluster 1: c_1 p_1 + p_B; one that hit no light: p_B.
-  EXPECT_FLOAT_EQ(bsdfSampleMixtureDensity(kCell, L, 1u, 2.0f, 0.5f), 0.4f * 2.0f + 0.5f);
-  EXPECT_EQ(bsdfSampleMixtureDensity(kCell, L, kNoCell, 2.0f, 0.5f), 0.5f);
+  // A BSDF sample that hit cluster 1: c_1 p_1 + p_B; one that hit no light: p_B. (Without the
+  // BVH defaults the hit's cluster weight is the cell's c_j, whatever the triangle.)
+  const vec3 p(0.0f), n(0.0f, 0.0f, 1.0f);
+  EXPECT_EQ(bsdfHitClusterWeight(kCell, L, 1u, 0u, p, n), 0.4f);
+  EXPECT_EQ(bsdfHitClusterWeight(kCell, L, kNoCell, 0u, p, n), 0.0f);
+  EXPECT_FLOAT_EQ(bsdfSampleMixtureDensity(1u, bsdfHitClusterWeight(kCell, L, 1u, 0u, p, n), 2.0f, 0.5f),
+                  0.4f * 2.0f + 0.5f);
+  EXPECT_EQ(bsdfSampleMixtureDensity(kNoCell, 0.0f, 2.0f, 0.5f), 0.5f);
   // No cell: the default selection.
-  EXPECT_FLOAT_EQ(bsdfSampleMixtureDensity(kNoCell, L, 2u, 3.0f, 0.5f), 3.0f / 3.0f + 0.5f);
+  EXPECT_FLOAT_EQ(bsdfSampleMixtureDensity(2u, bsdfHitClusterWeight(kNoCell, L, 2u, 0u, p, n), 3.0f, 0.5f),
+                  3.0f / 3.0f + 0.5f);
   EXPECT_EQ(lightSampleMixtureDensity(0.75f, 0.25f), 1.0f);
   EXPECT_EQ(balanceWeight(0.25f, 1.0f), 0.25f);
 }
@@ -90,15 +96,15 @@ TEST(CmsVertexTerms, HiddenPointsAreNotReachableAndKeepPositiveDensities) {
   ls.direction = vec3(0.0f, 0.0f, 1.0f);
   ls.pdf = 0.3f;
   float pk = 0.5f;
-  EXPECT_TRUE(lightPointReachable(kCell, L, 2u, n, true, pk, ls));
-  EXPECT_FALSE(lightPointReachable(kCell, L, 2u, n, false, pk, ls)) << "emits nothing towards the vertex";
+  EXPECT_TRUE(lightPointReachable(0.6f, n, true, pk, ls));
+  EXPECT_FALSE(lightPointReachable(0.6f, n, false, pk, ls)) << "emits nothing towards the vertex";
   ls.direction = vec3(0.0f, 0.0f, -1.0f);
-  EXPECT_FALSE(lightPointReachable(kCell, L, 2u, n, true, pk, ls)) << "below the surface";
+  EXPECT_FALSE(lightPointReachable(0.6f, n, true, pk, ls)) << "below the surface";
   EXPECT_EQ(pk, 0.5f);
   // No solid-angle density: hidden, with p_k = 1 and light density c_k.
   ls.direction = vec3(0.0f, 0.0f, 1.0f);
   ls.pdf = 0.0f;
-  EXPECT_FALSE(lightPointReachable(kCell, L, 2u, n, true, pk, ls));
+  EXPECT_FALSE(lightPointReachable(0.6f, n, true, pk, ls));
   EXPECT_EQ(pk, 1.0f);
   EXPECT_FLOAT_EQ(ls.pdf, 0.6f);
 }
