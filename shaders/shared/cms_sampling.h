@@ -80,12 +80,36 @@ SHARED_FN uint selectLightInCluster(uint k, float u) {
   return CLUSTER_LIGHT(lo).light;
 }
 
-// The scan over the table's defaults d_k (selectCluster's, for the defaults part).
-SHARED_FN uint selectDefaultCluster(uint L, float u) {
+// c_k + delta s d_k: the part of cluster k's weight that its in-cluster pmf spreads over its
+// lights (the learned part and the table's share of the defaults).
+SHARED_FN float tableClusterWeight(uint cell, uint L, uint k, float delta) {
+  return clusterSelectPmf(cell, L, k) + delta * kBvhDefaultsTableShare * CLUSTER_DEFAULT(k);
+}
+
+// The effective c_k of a light of cluster k (in-cluster pmf q) whose BVH pmf at the vertex is
+// bvhPmf: P(l | x) / q_l|k. The sampler and the BSDF hit both form it here, from the same floats.
+SHARED_FN float mixedClusterWeight(uint cell, uint L, uint k, float q, float delta, float bvhPmf) {
+  if (!(q > 0.0f)) return clusterSelectPmf(cell, L, k);   // never sampled in its cluster: p_k = 0 on it
+  return tableClusterWeight(cell, L, k, delta) + delta * (1.0f - kBvhDefaultsTableShare) * bvhPmf / q;
+}
+
+// The effective c_k of `light` at a vertex of `cell` at (p, n): P(l | x) / q_l|k, so that the light
+// density of any point on it is this times p_k (the cluster technique's density). Without the BVH
+// defaults exactly the cell's c_k.
+SHARED_FN float vertexClusterWeight(uint cell, uint L, uint light, vec3 p, vec3 n, float delta) {
+  uint k = LIGHT_CLUSTER(light);
+#ifdef LIGHT_BVH
+  if (delta > 0.0f) return mixedClusterWeight(cell, L, k, LIGHT_CLUSTER_PMF(light), delta, lightBvhPmf(p, n, light));
+#endif
+  return clusterSelectPmf(cell, L, k);
+}
+
+// The scan over the clusters' table weights (tableClusterWeight; selectCluster's without defaults).
+SHARED_FN uint selectTableCluster(uint cell, uint L, float u, float delta) {
   float cdf = 0.0f;
   uint last = 0u;
   for (uint k = 0u; k < L; ++k) {
-    float c = CLUSTER_DEFAULT(k);
+    float c = tableClusterWeight(cell, L, k, delta);
     if (!(c > 0.0f)) continue;
     last = k;
     cdf += c;
@@ -94,41 +118,32 @@ SHARED_FN uint selectDefaultCluster(uint L, float u) {
   return last;
 }
 
-// The effective c_k of `light` at a vertex of `cell` at (p, n): P(l | x) / q_l|k, so that the light
-// density of any point on it is this times p_k (the cluster technique's density). Without the BVH
-// defaults exactly the cell's c_k.
-SHARED_FN float vertexClusterWeight(uint cell, uint L, uint light, vec3 p, vec3 n, float delta) {
-  uint k = LIGHT_CLUSTER(light);
-  float c = clusterSelectPmf(cell, L, k);
+// The light of a light sample at a vertex of `cell`, and its effective c_k (vertexClusterWeight):
+// with probability delta (1 - s) from the light BVH at (p, n), else a cluster by its table weight
+// and a light inside it by uInCluster. Every invocation walks the BVH once: to pick, or to evaluate
+// the pmf of the light it picked from the table. kNoVertexLight where the BVH reaches no light
+// (the sample is then not drawn: a defective density counts nothing, §3).
+SHARED_FN uint selectVertexLight(uint cell, uint L, vec3 p, vec3 n, float u, float uInCluster, float delta,
+                                 OUT(float) ck) {
 #ifdef LIGHT_BVH
   if (delta > 0.0f) {
-    float q = LIGHT_CLUSTER_PMF(light);
-    if (!(q > 0.0f)) return c;   // never sampled inside its cluster: p_k = 0 on it anyway
-    c += delta * ((1.0f - kBvhDefaultsTableShare) * lightBvhPmf(p, n, light) / q +
-                  kBvhDefaultsTableShare * CLUSTER_DEFAULT(k));
-  }
-#endif
-  return c;
-}
-
-// The light of a light sample at a vertex of `cell`: from the cell's learned selection (a cluster,
-// then a light inside it by uInCluster) with probability 1 - delta, else from the defaults (the
-// light BVH at (p, n), or the table's d_k). kNoVertexLight where the BVH reaches no light (the
-// sample is then not drawn: a defective density counts nothing, §3).
-SHARED_FN uint selectVertexLight(uint cell, uint L, vec3 p, vec3 n, float u, float uInCluster, float delta) {
-#ifdef LIGHT_BVH
-  if (delta > 0.0f && !(u < 1.0f - delta)) {
-    float v = min((u - (1.0f - delta)) / delta, kLightBvhOneMinusEpsilon);
-    if (v < 1.0f - kBvhDefaultsTableShare) {
-      float pmf;
-      uint light = selectLightBvh(p, n, min(v / (1.0f - kBvhDefaultsTableShare), kLightBvhOneMinusEpsilon), pmf);
-      return pmf > 0.0f ? light : kNoVertexLight;
+    float bvhShare = delta * (1.0f - kBvhDefaultsTableShare);
+    bool fromBvh = !(u < 1.0f - bvhShare);
+    uint light = fromBvh ? 0u : selectLightInCluster(selectTableCluster(cell, L, u, delta), uInCluster);
+    float v = fromBvh ? min((u - (1.0f - bvhShare)) / bvhShare, kLightBvhOneMinusEpsilon) : 0.0f;
+    float bvhPmf;
+    uint walked = lightBvhWalk(p, n, fromBvh, v, light, bvhPmf);
+    if (fromBvh) {
+      if (!(bvhPmf > 0.0f)) return kNoVertexLight;
+      light = walked;
     }
-    float w = min((v - (1.0f - kBvhDefaultsTableShare)) / kBvhDefaultsTableShare, kLightBvhOneMinusEpsilon);
-    return selectLightInCluster(selectDefaultCluster(L, w), uInCluster);
+    ck = mixedClusterWeight(cell, L, LIGHT_CLUSTER(light), LIGHT_CLUSTER_PMF(light), delta, bvhPmf);
+    return light;
   }
 #endif
-  return selectLightInCluster(selectCluster(cell, L, u), uInCluster);
+  uint k = selectCluster(cell, L, u);
+  ck = clusterSelectPmf(cell, L, k);
+  return selectLightInCluster(k, uInCluster);
 }
 
 // p_k(z) for the point `lightPoint` on emitting triangle `tri` seen from `from`: the density of

@@ -44,18 +44,17 @@ SHARED_FN bool sampleClusterLight(uint cell, uint L, vec3 position, vec3 selectF
                                   float uEmitter, vec2 uPoint, INOUT(uint) rng, OUT(uint) k, OUT(float) pk,
                                   OUT(float) ck, OUT(LightSample) ls) {
   float delta = defaultsShare(cell, L);
-  uint light = selectVertexLight(cell, L, selectFrom, selectNormal, uLight, rngNextFloat(rng), delta);
+  uint light = selectVertexLight(cell, L, selectFrom, selectNormal, uLight, rngNextFloat(rng), delta, ck);
   k = kNoCell;
   pk = 0.0f;
-  ck = 0.0f;
   if (light == kNoVertexLight) {
+    ck = 0.0f;
     ls.pdf = 0.0f;
     return false;
   }
   k = LIGHT_CLUSTER(light);
   bool carries = sampleLightPoint(position, light, uEmitter, uPoint, ls);
   pk = LIGHT_CLUSTER_PMF(light) * ls.pdf;
-  ck = vertexClusterWeight(cell, L, light, selectFrom, selectNormal, delta);
   ls.pdf = ck * pk;
   return carries;
 }

@@ -76,35 +76,45 @@ SHARED_FN float lightBvhFirstChildProbability(LightBvhNodeGpu node, vec3 p, vec3
   return i0 / (i0 + i1);
 }
 
-// Picks a light for the point p with normal n; pmf is its probability (0, returning
-// kNoLightBvhNode, where no light can reach p).
-SHARED_FN uint selectLightBvh(vec3 p, vec3 n, float u, OUT(float) pmf) {
+// The one walk both selection and the pmf take: from the root, at each interior node the first
+// child's probability at (p, n). With `select` it picks by u, returning the light (pmf its
+// probability; 0, returning kNoLightBvhNode, where no light can reach p); without, it follows
+// `light`'s bit-trail and pmf is the probability with which the selection picks it. One loop for
+// both, so the products are the same floats and a subgroup whose invocations do different ones
+// (controlled mixture sampling draws some lights by the BVH and evaluates others,
+// shared/cms_sampling.h) walks the tree once.
+SHARED_FN uint lightBvhWalk(vec3 p, vec3 n, bool select, float u, uint light, OUT(float) pmf) {
   LightBvhNodeGpu header = LIGHT_BVH(0u);
   pmf = 0.0f;
   float pDirectional = header.power;
-  if (u < pDirectional) {
-    u = min(u / pDirectional, kLightBvhOneMinusEpsilon);
-    uint last = header.second + header.third - 1u;
-    uint i = header.second;
-    while (i < last && !(u < LIGHT_BVH(i).power)) ++i;
-    uint light = LIGHT_BVH(i).first;
+  if (select ? u < pDirectional : LIGHT_BVH(1u + light).kind == kLightBvhDirectional) {
+    if (select) {
+      u = min(u / pDirectional, kLightBvhOneMinusEpsilon);
+      uint last = header.second + header.third - 1u;
+      uint i = header.second;
+      while (i < last && !(u < LIGHT_BVH(i).power)) ++i;
+      light = LIGHT_BVH(i).first;
+    }
     pmf = LIGHT_BVH(1u + light).power;
     return light;
   }
   if (header.first == kNoLightBvhNode) return kNoLightBvhNode;
-  u = min((u - pDirectional) / (1.0f - pDirectional), kLightBvhOneMinusEpsilon);
+  uint trail = select ? 0u : LIGHT_BVH(1u + light).second;
+  uint length = select ? 0xffffffffu : LIGHT_BVH(1u + light).third;
+  if (select) u = min((u - pDirectional) / (1.0f - pDirectional), kLightBvhOneMinusEpsilon);
   float p0 = 1.0f - pDirectional;
   uint index = header.first;
   LightBvhNodeGpu node = LIGHT_BVH(index);
-  while (node.kind == kLightBvhInterior) {
+  for (uint depth = 0u; node.kind == kLightBvhInterior && depth < length; ++depth) {
     float first = lightBvhFirstChildProbability(node, p, n);
     if (first < 0.0f) return kNoLightBvhNode;
-    if (u < first) {
-      u = min(u / first, kLightBvhOneMinusEpsilon);
+    bool second = select ? !(u < first) : (trail & (1u << depth)) != 0u;
+    if (!second) {
+      if (select) u = min(u / first, kLightBvhOneMinusEpsilon);
       p0 *= first;
       index = node.first;
     } else {
-      u = min((u - first) / (1.0f - first), kLightBvhOneMinusEpsilon);
+      if (select) u = min((u - first) / (1.0f - first), kLightBvhOneMinusEpsilon);
       p0 *= 1.0f - first;
       index = node.second;
     }
@@ -116,28 +126,15 @@ SHARED_FN uint selectLightBvh(vec3 p, vec3 n, float u, OUT(float) pmf) {
   return node.first;
 }
 
+// Picks a light for the point p with normal n; pmf is its probability (0, returning
+// kNoLightBvhNode, where no light can reach p).
+SHARED_FN uint selectLightBvh(vec3 p, vec3 n, float u, OUT(float) pmf) { return lightBvhWalk(p, n, true, u, 0u, pmf); }
+
 // The probability with which selectLightBvh(p, n, ...) picks `light`: the same products along the
 // light's bit-trail.
 SHARED_FN float lightBvhPmf(vec3 p, vec3 n, uint light) {
-  LightBvhNodeGpu header = LIGHT_BVH(0u);
-  LightBvhNodeGpu entry = LIGHT_BVH(1u + light);
-  if (entry.kind == kLightBvhDirectional) return entry.power;
-  float pmf = 1.0f - header.power;
-  uint index = header.first;
-  LightBvhNodeGpu node = LIGHT_BVH(index);
-  for (uint depth = 0u; depth < entry.third; ++depth) {
-    float first = lightBvhFirstChildProbability(node, p, n);
-    if (first < 0.0f) return 0.0f;
-    if ((entry.second & (1u << depth)) == 0u) {
-      pmf *= first;
-      index = node.first;
-    } else {
-      pmf *= 1.0f - first;
-      index = node.second;
-    }
-    node = LIGHT_BVH(index);
-  }
-  if (!(lightBvhImportance(node, p, n) > 0.0f)) return 0.0f;
+  float pmf;
+  lightBvhWalk(p, n, false, 0.0f, light, pmf);
   return pmf;
 }
 
