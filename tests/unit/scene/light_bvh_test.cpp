@@ -26,35 +26,15 @@ const std::vector<mixtrace::shared::LightBvhNodeGpu>* gBvh = nullptr;
 #include "scene/shared_scene_access.h"
 #include "support/chi2.h"
 #include "support/shipped_scenes.h"
+#include "support/surface_points.h"
 
 using namespace mixtrace;
 using mixtrace::testing::sceneStem;
 using mixtrace::testing::shippedScenes;
+using mixtrace::testing::ShadingPoint;
+using mixtrace::testing::surfacePoints;
 
 namespace {
-
-struct ShadingPoint {
-  glm::vec3 p;
-  glm::vec3 n;
-};
-
-// Points on non-emitting triangles (their centroids, just off the front face), as the shade pass
-// meets them.
-std::vector<ShadingPoint> surfacePoints(const PreparedScene& scene, int count, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::vector<ShadingPoint> points;
-  const auto& tris = scene.bvh.triangles;
-  for (int tries = 0; tries < 100 * count && int(points.size()) < count; ++tries) {
-    uint32_t t = uint32_t(rng() % tris.size());
-    if (scene.shading[t].emitter >= 0) continue;
-    glm::vec3 n = shared::triangleGeometricNormal(tris[t]);
-    if (!(glm::dot(n, n) > 0.0f)) continue;
-    glm::vec3 c = tris[t].v0 + (tris[t].e1 + tris[t].e2) / 3.0f;
-    float size = glm::length(scene.scene.bounds.extent());
-    points.push_back({c + n * (1e-4f * size), n});
-  }
-  return points;
-}
 
 class LightBvhOnScene : public ::testing::TestWithParam<std::string> {
  protected:

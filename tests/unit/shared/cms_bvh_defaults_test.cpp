@@ -35,35 +35,18 @@ std::vector<float> gSolution;   // one cell (index 0)
 #include "shared/cms_vertex_terms.h"
 #include "support/chi2.h"
 #include "support/shipped_scenes.h"
+#include "support/surface_points.h"
 
 using namespace mixtrace;
 using mixtrace::testing::sceneStem;
 using mixtrace::testing::shippedScenes;
+using mixtrace::testing::ShadingPoint;
+using mixtrace::testing::surfacePoints;
 
 namespace {
 
 constexpr uint32_t kCell = 0;
 
-struct ShadingPoint {
-  glm::vec3 p;
-  glm::vec3 n;
-};
-
-// Points just off the front of non-emitting triangles (their centroids).
-std::vector<ShadingPoint> surfacePoints(const PreparedScene& scene, int count, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::vector<ShadingPoint> points;
-  const auto& tris = scene.bvh.triangles;
-  const float size = glm::length(scene.scene.bounds.extent());
-  for (int tries = 0; tries < 100 * count && int(points.size()) < count; ++tries) {
-    uint32_t t = uint32_t(rng() % tris.size());
-    if (scene.shading[t].emitter >= 0) continue;
-    glm::vec3 n = shared::triangleGeometricNormal(tris[t]);
-    if (!(glm::dot(n, n) > 0.0f)) continue;
-    points.push_back({tris[t].v0 + (tris[t].e1 + tris[t].e2) / 3.0f + n * (1e-4f * size), n});
-  }
-  return points;
-}
 
 // The cell's learned part: nothing, or (1 - eps) times a skewed pmf over the clusters.
 void setSelection(uint32_t L, bool learned) {
