@@ -150,10 +150,13 @@ SHARED_FN float cmsNewSelection(uint solution, uint L, uint k, bool learn, float
   float learned = learn ? (1.0f - eps) * (cmsSelectionWeight(cmsReadSolution3(solution + solutionAlpha(L, k, 0u))) / weightSum)
                         : 0.0f;
   if (bvhDefaults) return learned;   // the defaults' share is the rest, 1 - sum c
-  float d = CLUSTER_DEFAULT(k);
-  d = uniformDefaults ? 1.0f / float(L) : ((cmsIsFinite(d) && d > 0.0f) ? d / defaultSum : 0.0f);
+  float raw = CLUSTER_DEFAULT(k);
+  bool positive = uniformDefaults || (cmsIsFinite(raw) && raw > 0.0f);
+  float d = uniformDefaults ? 1.0f / float(L) : (positive ? raw / defaultSum : 0.0f);
   float c = learn ? learned + eps * d : d;
-  if (d > 0.0f) c = max(c, 1e-30f);   // eps * d can underflow for a tiny default
+  // eps * d, and a tiny default over the sum, can underflow: a cluster with a positive default
+  // must stay selectable.
+  if (positive) c = max(c, 1e-30f);
   return c;
 }
 

@@ -367,7 +367,7 @@ void expectWellFormed(const GpuCell& g, const float* defaults, const std::string
 // criterion of a stable solve at any conditioning), and the same selection.
 void expectMatchesReference(const GpuCell& g, const float* stats, uint32_t samples, const SolveParams& params,
                             const float* defaults, double tol, const std::string& where, double backwardTol = 0.0) {
-  expectWellFormed(g, defaults, where);
+  expectWellFormed(g, defaults, where, (params.flags & shared::kSolveBvhDefaults) != 0);
   CellSolution ref = solveCellReference(stats, samples, g.L, params, defaults);
   ASSERT_EQ(g.valid() == 1.0f, ref.valid) << where;
   for (uint32_t t = 0; t <= g.L; ++t)
@@ -768,13 +768,15 @@ TEST_F(CmsSolve, GarbageInFiniteOut) {
       for (float& v : s) v = entry();
       batch.add(s, uint32_t(u(rng) * 100.0));
     }
-    for (int trial = 0; trial < 4; ++trial) {
-      SolveParams params = makeParams(L, uint32_t(trial), ridges[size_t(u(rng) * 5) % 5], 10, defensives[size_t(u(rng) * 6) % 6]);
+    // Trials 4-7: the same flags with the BVH defaults (only the learned part stored).
+    for (int trial = 0; trial < 8; ++trial) {
+      const uint32_t flags = uint32_t(trial % 4) | (trial >= 4 ? shared::kSolveBvhDefaults : 0u);
+      SolveParams params = makeParams(L, flags, ridges[size_t(u(rng) * 5) % 5], 10, defensives[size_t(u(rng) * 6) % 6]);
       std::vector<float> gpu = solveOnGpu(batch, params);
       uint32_t disagreements = 0;
       for (uint32_t i = 0; i < batch.cells(); ++i) {
         GpuCell g = gpuCell(gpu, L, i);
-        expectWellFormed(g, batch.defaults.data(), "L " + std::to_string(L) + " cell " + std::to_string(i));
+        expectWellFormed(g, batch.defaults.data(), "L " + std::to_string(L) + " cell " + std::to_string(i), trial >= 4);
         CellSolution ref = solveCellReference(batch.cell(i), batch.samples[i], L, params, batch.defaults.data());
         disagreements += (g.valid() == 1.0f) != ref.valid;
       }
@@ -852,6 +854,49 @@ TEST_F(CmsSolve, LearnedSelection) {
         EXPECT_NEAR(g.select(k), expected, 1e-6) << where << " c_" << k;
         if (d[k] > 0.0) EXPECT_GT(g.select(k), 0.0) << where;
       }
+    }
+  }
+}
+
+// The light BVH as the defaults (kSolveBvhDefaults, learned and cms): the cell stores only the
+// learned part, c_k = (1 - eps) w_k / sum w, and nothing where it learns nothing (no positive
+// weight, too few samples): the defaults' share 1 - sum c_k is then 1. GPU and reference agree.
+TEST_F(CmsSolve, LearnedSelectionWithBvhDefaults) {
+  const uint32_t L = 4;
+  auto diagonalCell = [&](const std::vector<glm::vec3>& alpha) {
+    std::vector<float> s(shared::cellStatsStride(L), 0.0f);
+    for (uint32_t k = 0; k < L; ++k) {
+      s[shared::statsAkk(L, k)] = 1.0f;
+      for (int c = 0; c < 3; ++c) s[shared::statsBk(L, k, c)] = alpha[k][c];
+    }
+    return s;
+  };
+  auto lum = [](glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
+  const std::vector<glm::vec3> mixed = {{2, 1, 0.5f}, {-1, -2, -1}, {0, 0, 0}, {0.5f, 3, 9}};
+  const std::vector<glm::vec3> negative = {{-1, -1, -1}, {0, 0, 0}, {-2, 0, 0}, {0, -0.5f, 0}};
+  for (float defensive : {0.2f, 0.0f, 1.0f}) {
+    Batch batch(L);
+    batch.defaults = {0.1f, 0.2f, 0.0f, 0.7f};
+    batch.add(diagonalCell(mixed), 100);
+    batch.add(diagonalCell(negative), 100);
+    batch.add(diagonalCell(mixed), 5);   // below minSamples
+    SolveParams params = makeParams(L, kBoth | shared::kSolveBvhDefaults, 0.0f, 10, defensive);
+    std::vector<float> gpu = solveOnGpu(batch, params);
+    const double eps = std::max(double(defensive), 1e-3);
+    double wSum = 0.0;
+    for (uint32_t k = 0; k < L; ++k) wSum += std::max(lum(mixed[k]), 0.0);
+    for (uint32_t i = 0; i < 3; ++i) {
+      std::string where = "defensive " + std::to_string(defensive) + " cell " + std::to_string(i);
+      GpuCell g = gpuCell(gpu, L, i);
+      expectWellFormed(g, batch.defaults.data(), where, true);
+      expectMatchesReference(g, batch.cell(i), batch.samples[i], params, batch.defaults.data(), 1e-6, where);
+      double sum = 0.0;
+      for (uint32_t k = 0; k < L; ++k) {
+        double expected = i == 0 ? (1.0 - eps) * std::max(lum(mixed[k]), 0.0) / wSum : 0.0;
+        EXPECT_NEAR(g.select(k), expected, 1e-6) << where << " c_" << k;
+        sum += g.select(k);
+      }
+      EXPECT_NEAR(1.0 - sum, i == 0 ? eps : 1.0, 1e-6) << where << ": the defaults' share";
     }
   }
 }
