@@ -23,8 +23,8 @@ double sourceProbability(const LightSet& lights, const LightClusters& clusters, 
                          bool punctual) {
   double p = clusters.lightPmfInCluster[light];
   if (punctual) return p;
-  return p * (clusters.uniformEmitters ? 1.0 / double(lights.lights[light].emitterCount)
-                                       : double(lights.emitters[emitter].pmf));
+  return p * double(shared::emitterPmfInLight(lights.emitters[emitter], lights.lights[light].emitterCount,
+                                              clusters.uniformEmitters));
 }
 
 }  // namespace

@@ -54,21 +54,6 @@ SHARED_FN float defaultsShare(uint cell, uint L) {
   return clamp(1.0f - learned, 0.0f, 1.0f);
 }
 
-// Inverts the cell's selection CDF by a linear scan (L <= 32); never returns an empty cluster
-// unless every c_k is 0.
-SHARED_FN uint selectCluster(uint cell, uint L, float u) {
-  float cdf = 0.0f;
-  uint last = 0u;
-  for (uint k = 0u; k < L; ++k) {
-    float c = clusterSelectPmf(cell, L, k);
-    if (c <= 0.0f) continue;
-    last = k;
-    cdf += c;
-    if (u < cdf) return k;
-  }
-  return last;   // rounding: u at the very top of the CDF
-}
-
 SHARED_FN uint selectLightInCluster(uint k, float u) {
   ClusterGpu c = CLUSTER(k);
   uint lo = c.firstLight;
@@ -104,18 +89,25 @@ SHARED_FN float vertexClusterWeight(uint cell, uint L, uint light, vec3 p, vec3 
   return clusterSelectPmf(cell, L, k);
 }
 
-// The scan over the clusters' table weights (tableClusterWeight; selectCluster's without defaults).
-SHARED_FN uint selectTableCluster(uint cell, uint L, float u, float delta) {
+// The weight a cluster scan gives cluster k: the cell's c_k, or with the defaults' share delta > 0
+// the table weight (the learned part and the table's share of the defaults).
+SHARED_FN float clusterScanWeight(uint cell, uint L, uint k, float delta) {
+  return delta > 0.0f ? tableClusterWeight(cell, L, k, delta) : clusterSelectPmf(cell, L, k);
+}
+
+// Inverts the scan weights' CDF by a linear scan (L <= 32); never returns a cluster of weight 0
+// unless every weight is 0.
+SHARED_FN uint selectCluster(uint cell, uint L, float u, float delta) {
   float cdf = 0.0f;
   uint last = 0u;
   for (uint k = 0u; k < L; ++k) {
-    float c = tableClusterWeight(cell, L, k, delta);
+    float c = clusterScanWeight(cell, L, k, delta);
     if (!(c > 0.0f)) continue;
     last = k;
     cdf += c;
     if (u < cdf) return k;
   }
-  return last;
+  return last;   // rounding: u at the very top of the CDF
 }
 
 // The light of a light sample at a vertex of `cell`, and its effective c_k (vertexClusterWeight):
@@ -129,7 +121,7 @@ SHARED_FN uint selectVertexLight(uint cell, uint L, vec3 p, vec3 n, float u, flo
   if (delta > 0.0f) {
     float bvhShare = delta * (1.0f - kBvhDefaultsTableShare);
     bool fromBvh = !(u < 1.0f - bvhShare);
-    uint light = fromBvh ? 0u : selectLightInCluster(selectTableCluster(cell, L, u, delta), uInCluster);
+    uint light = fromBvh ? 0u : selectLightInCluster(selectCluster(cell, L, u, delta), uInCluster);
     float v = fromBvh ? min((u - (1.0f - bvhShare)) / bvhShare, kLightBvhOneMinusEpsilon) : 0.0f;
     float bvhPmf;
     uint walked = lightBvhWalk(p, n, fromBvh, v, light, bvhPmf);
@@ -141,7 +133,7 @@ SHARED_FN uint selectVertexLight(uint cell, uint L, vec3 p, vec3 n, float u, flo
     return light;
   }
 #endif
-  uint k = selectCluster(cell, L, u);
+  uint k = selectCluster(cell, L, u, 0.0f);
   ck = clusterSelectPmf(cell, L, k);
   return selectLightInCluster(k, uInCluster);
 }

@@ -158,6 +158,14 @@ struct EmitterGpu {
   float cdf;           // inclusive prefix sum of pmf inside its light
 };
 
+// The probability of emitter `em` inside its light of `emitterCount` emitters: uniform under
+// uniform selection (EMITTERS_UNIFORM), else its area x radiance pmf. One formula for the
+// shaders' sampling (shared/lights.h emitterPmf) and the host's technique shares
+// (cms/light_techniques.cpp).
+SHARED_FN float emitterPmfInLight(EmitterGpu em, uint emitterCount, bool uniformInLight) {
+  return uniformInLight ? 1.0f / float(emitterCount) : em.pmf;
+}
+
 // CMS path state: what the next depth needs to settle a vertex's BSDF sample (its control-variate
 // and statistics terms depend on what the sample hits).
 struct CvPathState {

@@ -70,7 +70,7 @@ SHARED_FN uint selectEmitter(LightGpu l, float u) {
 // The probability of emitter e inside its light, as selectEmitter picks it.
 SHARED_FN float emitterPmf(uint e) {
   EmitterGpu em = EMITTER(e);
-  return EMITTERS_UNIFORM ? 1.0f / float(LIGHT(em.light).emitterCount) : em.pmf;
+  return emitterPmfInLight(em, LIGHT(em.light).emitterCount, EMITTERS_UNIFORM);
 }
 
 // Length of v without squaring its components in float: length() is 0 below ~1e-19 and

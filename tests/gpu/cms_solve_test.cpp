@@ -805,19 +805,26 @@ TEST_F(CmsSolve, MinimumSampleThreshold) {
 
 // Diagonal cells (B absent, A_kk = 1, b_k = alpha_k) so alpha is known exactly and the selection
 // can be checked against the formula of docs/estimator.md §7 directly.
+// The learned-selection tests' cells: L = 4 clusters with A = identity, so alpha_k = b_k; one
+// with weights of both signs and one with none positive.
+constexpr uint32_t kSelectionL = 4;
+std::vector<float> diagonalCell(const std::vector<glm::vec3>& alpha) {
+  const uint32_t L = kSelectionL;
+  std::vector<float> s(shared::cellStatsStride(L), 0.0f);
+  for (uint32_t k = 0; k < L; ++k) {
+    s[shared::statsAkk(L, k)] = 1.0f;
+    for (int c = 0; c < 3; ++c) s[shared::statsBk(L, k, c)] = alpha[k][c];
+  }
+  return s;
+}
+double lum(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+const std::vector<glm::vec3> kMixedAlpha = {{2, 1, 0.5f}, {-1, -2, -1}, {0, 0, 0}, {0.5f, 3, 9}};
+const std::vector<glm::vec3> kNegativeAlpha = {{-1, -1, -1}, {0, 0, 0}, {-2, 0, 0}, {0, -0.5f, 0}};
+
 TEST_F(CmsSolve, LearnedSelection) {
-  const uint32_t L = 4;
-  auto diagonalCell = [&](const std::vector<glm::vec3>& alpha) {
-    std::vector<float> s(shared::cellStatsStride(L), 0.0f);
-    for (uint32_t k = 0; k < L; ++k) {
-      s[shared::statsAkk(L, k)] = 1.0f;
-      for (int c = 0; c < 3; ++c) s[shared::statsBk(L, k, c)] = alpha[k][c];
-    }
-    return s;
-  };
-  auto lum = [](glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
-  const std::vector<glm::vec3> mixed = {{2, 1, 0.5f}, {-1, -2, -1}, {0, 0, 0}, {0.5f, 3, 9}};
-  const std::vector<glm::vec3> negative = {{-1, -1, -1}, {0, 0, 0}, {-2, 0, 0}, {0, -0.5f, 0}};
+  const uint32_t L = kSelectionL;
+  const std::vector<glm::vec3>& mixed = kMixedAlpha;
+  const std::vector<glm::vec3>& negative = kNegativeAlpha;
   struct Case {
     std::vector<float> defaults;
     float defensive;
@@ -862,18 +869,9 @@ TEST_F(CmsSolve, LearnedSelection) {
 // learned part, c_k = (1 - eps) w_k / sum w, and nothing where it learns nothing (no positive
 // weight, too few samples): the defaults' share 1 - sum c_k is then 1. GPU and reference agree.
 TEST_F(CmsSolve, LearnedSelectionWithBvhDefaults) {
-  const uint32_t L = 4;
-  auto diagonalCell = [&](const std::vector<glm::vec3>& alpha) {
-    std::vector<float> s(shared::cellStatsStride(L), 0.0f);
-    for (uint32_t k = 0; k < L; ++k) {
-      s[shared::statsAkk(L, k)] = 1.0f;
-      for (int c = 0; c < 3; ++c) s[shared::statsBk(L, k, c)] = alpha[k][c];
-    }
-    return s;
-  };
-  auto lum = [](glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
-  const std::vector<glm::vec3> mixed = {{2, 1, 0.5f}, {-1, -2, -1}, {0, 0, 0}, {0.5f, 3, 9}};
-  const std::vector<glm::vec3> negative = {{-1, -1, -1}, {0, 0, 0}, {-2, 0, 0}, {0, -0.5f, 0}};
+  const uint32_t L = kSelectionL;
+  const std::vector<glm::vec3>& mixed = kMixedAlpha;
+  const std::vector<glm::vec3>& negative = kNegativeAlpha;
   for (float defensive : {0.2f, 0.0f, 1.0f}) {
     Batch batch(L);
     batch.defaults = {0.1f, 0.2f, 0.0f, 0.7f};
