@@ -12,8 +12,10 @@ const uint kNoPairSlot = 0xffffffffu;
 
 // Probes before a pair is refused. At a load of 1/2 (the capacity pairTableCapacityFor picks) a
 // triangular probe sequence almost never gets this long; the bound only stops a full table from
-// being scanned end to end by every vertex.
-const uint kPairProbes = 64u;
+// being scanned end to end by every vertex. 128, not 64: runs of consecutive techniques
+// (hashPairKey) crowd a table more than scattered keys, and 64 refused one pair of 2.56 M at a
+// load of 0.61 (CmsPairTable.TenThousandTechniquesTimesCellsFitAndInsertFast).
+const uint kPairProbes = 128u;
 
 // Statistics of one pair, floats, kPairStatsStride per slot in one array (the cell keeps A_BB and
 // b_B itself): interleaved so the five atomics of one sample touch one cache line.
@@ -56,9 +58,18 @@ SHARED_FN uint64_t pairKey(uint cell, uint technique) {
 SHARED_FN uint pairKeyCell(uint64_t key) { return uint(key >> 32) - 1u; }
 SHARED_FN uint pairKeyTechnique(uint64_t key) { return uint(key); }
 
-// The pair table's hash of a key (shared/hash64.h): consecutive techniques of one cell, and one
-// technique in neighbouring cells, land far apart.
-SHARED_FN uint hashPairKey(uint64_t key) { return hash64To32(key); }
+// The first slot of a key's probe sequence. Techniques are numbered light by light, triangle by
+// triangle, so a vertex's neighbours in a cell reach neighbouring techniques: a run of
+// kPairRunLength consecutive techniques of one cell starts at one hashed slot and fills the slots
+// after it, which share cache lines (the lookup's cost on a CPU device is its cache misses);
+// the runs themselves, and one technique in neighbouring cells, land far apart (shared/hash64.h).
+// Runs stay short, so a probe that starts inside another cell's run leaves it within a few probes.
+const uint kPairRunLength = 16u;
+SHARED_FN uint hashPairKey(uint64_t key) {
+  uint technique = pairKeyTechnique(key);
+  uint64_t run = (key & ~uint64_t(0xffffffffu)) | uint64_t(technique / kPairRunLength);
+  return hash64To32(run) + technique % kPairRunLength;
+}
 
 SHARED_FN uint pairProbeBound(uint capacity) { return min(kPairProbes, capacity); }
 

@@ -184,6 +184,29 @@ TEST(CmsPairTable, CapacityKeepsTheLoadAtMostHalfAndFitsOneStorageBuffer) {
   EXPECT_EQ(shared::pairStatsBt(3, 2) + 1, shared::pairStatsAtt(4)) << "the five floats of a slot are contiguous";
 }
 
+// A cell's consecutive techniques (neighbouring triangles of one light, which a vertex's samples
+// reach together) share cache lines: in an empty table a run of kPairRunLength of them takes
+// consecutive slots. Runs are hashed apart, so filling a table to half its capacity with whole
+// cells of many techniques refuses nothing (a probe that starts inside another run leaves it).
+TEST(CmsPairTable, ConsecutiveTechniquesOfACellShareCacheLines) {
+  const uint32_t capacity = 1u << 16;
+  {
+    CpuTable t(capacity);
+    const uint32_t first = shared::findOrInsertPair(capacity, 5, 3 * shared::kPairRunLength);
+    for (uint32_t i = 1; i < shared::kPairRunLength; ++i)
+      EXPECT_EQ(shared::findOrInsertPair(capacity, 5, 3 * shared::kPairRunLength + i), (first + i) & (capacity - 1)) << i;
+    EXPECT_NE(shared::findOrInsertPair(capacity, 5, 4 * shared::kPairRunLength), (first + shared::kPairRunLength) & (capacity - 1))
+        << "the next run starts elsewhere";
+  }
+  CpuTable t(capacity);
+  uint32_t refused = 0;
+  for (uint32_t cell = 0; cell < capacity / 2 / 2048; ++cell)
+    for (uint32_t technique = 0; technique < 2048; ++technique)
+      refused += shared::findOrInsertPair(capacity, cell, technique) == kNoPairSlot;
+  EXPECT_EQ(refused, 0u);
+  expectOccupiedListMatchesKeys(t.occupiedSnapshot(), t.snapshot());
+}
+
 // (c) on the C++ build: a table of 16 slots takes exactly 16 pairs (the probe sequence reaches every
 // slot), refuses the rest, and still finds the first 16.
 TEST(CmsPairTable, FullTableRefusesNewPairsAndKeepsOldOnes) {
