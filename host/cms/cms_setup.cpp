@@ -52,8 +52,8 @@ bool cmsReducesToPlainMis(const CmsMethod& method, const CmsScene& scene) {
   return method.learnSelection && method.controlVariate && scene.clusters.clusters.size() <= 1;
 }
 
-std::string plainMisNote(const CmsScene& scene) {
-  const std::string plainMis = "; rendering with plain MIS (pt-power's estimator; --method cv forces it)";
+std::string plainMisNote(const CmsScene& scene, const std::string& estimator) {
+  const std::string plainMis = "; rendering with plain MIS (" + estimator + "'s estimator; --method cv forces it)";
   if (scene.clusters.lightCluster.empty())   // one entry per light of the scene
     return "cms: the scene has no lights, so there is no light selection to learn and no direct light to "
            "control" + plainMis;

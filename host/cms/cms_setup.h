@@ -45,7 +45,7 @@ CmsScene setUpClusters(const PreparedScene& scene, std::vector<shared::LightSele
 bool cmsReducesToPlainMis(const CmsMethod& method, const CmsScene& scene);
 
 // The line that says why cms runs as plain MIS on this scene (cmsReducesToPlainMis): that its
-// lights form one cluster, or that it has none at all.
-std::string plainMisNote(const CmsScene& scene);
+// lights form one cluster, or that it has none at all; `estimator` names what it runs instead.
+std::string plainMisNote(const CmsScene& scene, const std::string& estimator);
 
 }  // namespace mixtrace

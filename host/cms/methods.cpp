@@ -26,6 +26,12 @@ const MethodInfo* findMethod(const std::string& name) {
   return nullptr;
 }
 
+const MethodInfo* plainMisMethodFor(LightSelection selection) {
+  for (const MethodInfo& m : methodTable())
+    if (m.selection == selection && !m.clusters && !m.learnSelection && !m.controlVariate) return &m;
+  return nullptr;
+}
+
 const MethodInfo* methodForViewerKey(char key) {
   for (const MethodInfo& m : methodTable())
     if (key == m.viewerKey) return &m;

@@ -34,8 +34,14 @@ std::string viewerKeyRange();
 // The method a render uses when --method is not given.
 inline constexpr const char* kDefaultMethod = "cms";
 
-// Plain MIS with power-proportional light selection: the estimator cms reduces to on a scene of
-// one light cluster, and the viewer's split-view partner for the others.
+// Plain MIS with power-proportional light selection: the viewer's split-view partner for the
+// learning methods.
 inline constexpr const char* kPlainMisMethod = "pt-power";
+
+// The plain-MIS row (no clusters, no learning, no control variate) that picks lights by
+// `selection`: what a learning method reduces to where there is nothing to learn (cms on a scene
+// of one light cluster runs its own default selection, the light BVH, as pt-bvh). nullptr where no
+// row does.
+const MethodInfo* plainMisMethodFor(LightSelection selection);
 
 }  // namespace mixtrace

@@ -29,9 +29,13 @@ MethodSetup setUpMethod(const PreparedScene& prepared, const RenderOptions& o, c
   m.lights = buildMethodLights(prepared, *row, uint32_t(o.maxClusters), uint32_t(o.maxTechniques));
   m.estimator = method;
   if (cmsReducesToPlainMis(s.cms, m.lights.cms)) {
-    info(plainMisNote(m.lights.cms));
+    // The lights keep the method's own selection (its defaults), so the image is that plain
+    // method's, and the stats and header name it.
+    const MethodInfo* plain = plainMisMethodFor(m.lights.kind);
+    if (plain == nullptr) throw Error("internal: no plain MIS method selects lights as " + method + " does");
+    info(plainMisNote(m.lights.cms, plain->name));
     s.cms = CmsMethod{};
-    m.estimator = kPlainMisMethod;
+    m.estimator = plain->name;
   }
   if (o.cells == 0 && s.cms.clusters) {
     const GridResolution grid = autoGridResolution(prepared, makeCamera(prepared.scene, s.width, s.height),

@@ -81,14 +81,15 @@ TEST(OutputFormat, FollowsTheExtension) {
 }
 
 TEST(OutputFormat, HeaderNamesTheEstimatorThatRan) {
-  // cms on the Cornell box (one light cluster) runs pt-power's estimator: the header says both.
+  // cms on the Cornell box (one light cluster) runs pt-bvh's estimator (its own default
+  // selection): the header says both.
   const fs::path dir = scratchDir("estimator");
   const RunResult r = runMixtrace(kQuick + "--no-png --out " + (dir / "e.exr").string());
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
   ExrMetadata meta;
   readExr((dir / "e.exr").string(), &meta);
   EXPECT_EQ(meta.strings["method"], "cms");
-  EXPECT_EQ(meta.strings["estimator"], "pt-power");
+  EXPECT_EQ(meta.strings["estimator"], "pt-bvh");
   EXPECT_NE(r.stderrText.find(" 1 light;"), std::string::npos) << r.stderrText;
   EXPECT_EQ(r.stderrText.find("1 lights"), std::string::npos) << r.stderrText;
 }

@@ -156,15 +156,37 @@ TEST(DefaultMethod, ReducesToPlainMisOnlyWithOneCluster) {
   RunResult cornell;
   nlohmann::json j = render("cornell_box.gltf", "cms", &cornell);
   EXPECT_EQ(j["method"], "cms");
-  EXPECT_EQ(j["estimator"], "pt-power");
+  EXPECT_EQ(j["estimator"], "pt-bvh");
   EXPECT_FALSE(j.contains("cms_clusters"));
   EXPECT_NE(cornell.stderrText.find("one cluster"), std::string::npos) << cornell.stderrText;
+  EXPECT_NE(cornell.stderrText.find("pt-bvh's estimator"), std::string::npos) << cornell.stderrText;
   j = render("veach_mis.gltf", "cms");
   EXPECT_EQ(j["estimator"], "cms");
   EXPECT_EQ(j["cms_clusters"].get<int>(), 4);
   j = render("cornell_box.gltf", "cv");
   EXPECT_EQ(j["estimator"], "cv");
   EXPECT_EQ(j["cms_clusters"].get<int>(), 1);
+}
+
+// What the reduced cms names is what it renders: several lights in one cluster (--max-clusters 1),
+// where pt-bvh and pt-power differ, give pt-bvh's image for the same seed, sample for sample.
+TEST(DefaultMethod, ReducedCmsRendersTheEstimatorItNames) {
+  fs::path dir = scratchDir("reduce-image");
+  auto render = [&](const std::string& method) {
+    const fs::path exr = dir / (method + ".exr"), stats = dir / (method + ".json");
+    RunResult r = runMixtrace("render " + std::string(MIXTRACE_SOURCE_DIR) +
+                              "/scenes/veach_mis.gltf --width 32 --height 24 --spp 4 --seed 7 --max-clusters 1 "
+                              "--no-png --method " + method + " --out " + exr.string() + " --stats " + stats.string());
+    EXPECT_EQ(r.exitCode, 0) << r.stderrText;
+    return std::make_pair(readExr(exr.string()), readJson(stats));
+  };
+  const auto [cms, cmsStats] = render("cms");
+  const auto [bvh, bvhStats] = render("pt-bvh");
+  const auto [power, powerStats] = render("pt-power");
+  EXPECT_EQ(cmsStats["estimator"], "pt-bvh");
+  ASSERT_EQ(cms.rgb.size(), bvh.rgb.size());
+  EXPECT_EQ(cms.rgb, bvh.rgb) << "the same estimator and seed trace the same paths";
+  EXPECT_NE(cms.rgb, power.rgb) << "the scene tells pt-bvh from pt-power";
 }
 
 // The stats say which grid the cells were keyed to: --cells N as given, auto as chosen from the

@@ -9,12 +9,13 @@ namespace {
 
 TEST(CmsSetup, PlainMisNoteSaysNoLightsForASceneWithout) {
   CmsScene none;
-  EXPECT_NE(plainMisNote(none).find("no lights"), std::string::npos) << plainMisNote(none);
-  EXPECT_EQ(plainMisNote(none).find("one cluster"), std::string::npos) << plainMisNote(none);
+  EXPECT_NE(plainMisNote(none, "pt-bvh").find("no lights"), std::string::npos) << plainMisNote(none, "pt-bvh");
+  EXPECT_EQ(plainMisNote(none, "pt-bvh").find("one cluster"), std::string::npos) << plainMisNote(none, "pt-bvh");
   CmsScene one;
   one.clusters.lightCluster = {0u};
   one.clusters.clusters.resize(1);
-  EXPECT_NE(plainMisNote(one).find("one cluster"), std::string::npos) << plainMisNote(one);
+  EXPECT_NE(plainMisNote(one, "pt-bvh").find("one cluster"), std::string::npos) << plainMisNote(one, "pt-bvh");
+  EXPECT_NE(plainMisNote(one, "pt-bvh").find("pt-bvh's estimator"), std::string::npos) << "names what runs instead";
 }
 
 }  // namespace

@@ -39,6 +39,18 @@ TEST(Methods, DefaultAndPlainMisMethodsAreRows) {
   EXPECT_EQ(findMethod("no-such-method"), nullptr);
 }
 
+// What a learning method reduces to keeps its selection: cms's defaults are the light BVH, so
+// cms on one cluster is pt-bvh (tests/e2e/render_cli_test.cpp renders both).
+TEST(Methods, PlainMisMethodForASelectionIsTheRowThatSelectsSo) {
+  for (LightSelection s : {LightSelection::Uniform, LightSelection::Power, LightSelection::Bvh}) {
+    const MethodInfo* plain = plainMisMethodFor(s);
+    ASSERT_NE(plain, nullptr);
+    EXPECT_EQ(plain->selection, s);
+    EXPECT_FALSE(plain->clusters || plain->learnSelection || plain->controlVariate) << plain->name;
+  }
+  EXPECT_STREQ(plainMisMethodFor(findMethod(kDefaultMethod)->selection)->name, "pt-bvh");
+}
+
 TEST(Methods, LookUpsFindTheirRow) {
   for (const MethodInfo& m : methodTable()) {
     EXPECT_EQ(findMethod(m.name), &m);
