@@ -67,8 +67,7 @@ SHARED_FN uint pairKeyTechnique(uint64_t key) { return uint(key); }
 const uint kPairRunLength = 16u;
 SHARED_FN uint hashPairKey(uint64_t key) {
   uint technique = pairKeyTechnique(key);
-  uint64_t run = (key & ~uint64_t(0xffffffffu)) | uint64_t(technique / kPairRunLength);
-  return hash64To32(run) + technique % kPairRunLength;
+  return hash64To32(pairKey(pairKeyCell(key), technique / kPairRunLength)) + technique % kPairRunLength;
 }
 
 SHARED_FN uint pairProbeBound(uint capacity) { return min(kPairProbes, capacity); }

@@ -8,14 +8,15 @@ namespace mixtrace {
 namespace {
 
 TEST(CmsSetup, PlainMisNoteSaysNoLightsForASceneWithout) {
-  CmsScene none;
-  EXPECT_NE(plainMisNote(none, "pt-bvh").find("no lights"), std::string::npos) << plainMisNote(none, "pt-bvh");
-  EXPECT_EQ(plainMisNote(none, "pt-bvh").find("one cluster"), std::string::npos) << plainMisNote(none, "pt-bvh");
+  const std::string noLights = plainMisNote(CmsScene{}, "pt-bvh");
+  EXPECT_NE(noLights.find("no lights"), std::string::npos) << noLights;
+  EXPECT_EQ(noLights.find("one cluster"), std::string::npos) << noLights;
   CmsScene one;
   one.clusters.lightCluster = {0u};
   one.clusters.clusters.resize(1);
-  EXPECT_NE(plainMisNote(one, "pt-bvh").find("one cluster"), std::string::npos) << plainMisNote(one, "pt-bvh");
-  EXPECT_NE(plainMisNote(one, "pt-bvh").find("pt-bvh's estimator"), std::string::npos) << "names what runs instead";
+  const std::string oneCluster = plainMisNote(one, "pt-bvh");
+  EXPECT_NE(oneCluster.find("one cluster"), std::string::npos) << oneCluster;
+  EXPECT_NE(oneCluster.find("pt-bvh's estimator"), std::string::npos) << "names what runs instead";
 }
 
 }  // namespace
