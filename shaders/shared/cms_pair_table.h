@@ -13,9 +13,10 @@
 // array (fill with 0) when the statistics restart.
 //
 // When no free slot is found within kPairProbes (a full or crowded table), the pair gets
-// kNoPairSlot. The caller counts that and treats the sample under a coarser technique (a merged
-// group of triangles, or no control variate term for it): any granularity keeps the estimator
-// unbiased, so a full table costs variance, never correctness.
+// kNoPairSlot. The caller counts that and gives the sample no light-technique term (alpha_t = 0:
+// the cell's alpha_B p_B alone, shared/cms_pair_terms.h): unbiased, so a full table costs
+// variance, never correctness. A coarser technique for refused pairs is designed, not built
+// (docs/estimator.md §4, "When the table fills").
 //
 // The includer defines PAIR_KEY_LOAD(slot) -> the uint64 key in that slot, and
 // PAIR_KEY_CAS(slot, expected, desired) -> the previous key (an atomic compare-and-swap on the key
