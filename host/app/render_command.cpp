@@ -121,6 +121,7 @@ RenderStats collectStats(const RenderOptions& o, const PreparedScene& prepared, 
   stats.cmsPairsUsed = counters.pairsUsed;
   stats.cmsPairSamples = counters.pairSamples;
   stats.cmsPairRefusedSamples = counters.pairRefusedSamples;
+  stats.cmsPairRemainderSamples = counters.pairRemainderSamples;
   stats.cmsPairBufferBytes = counters.pairBufferBytes;
   stats.passMs = renderer.passTimesMs();
   return stats;

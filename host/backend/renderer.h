@@ -70,7 +70,8 @@ struct RenderCounters {
   uint64_t pairTableCapacity = 0;     // slots of the (cell, technique) pair table
   uint64_t pairsUsed = 0;             // slots claimed
   uint64_t pairSamples = 0;           // light-technique samples that found or claimed their pair
-  uint64_t pairRefusedSamples = 0;    // ... whose pair the full table refused (alpha_t = 0: unbiased)
+  uint64_t pairRefusedSamples = 0;    // ... whose pair and remainder pair the full table refused
+  uint64_t pairRemainderSamples = 0;  // ... whose pair it refused, gathered by their cluster's remainder
   uint64_t pairBufferBytes = 0;       // memory of the pair buffers (keys, statistics, counts, alpha)
 };
 

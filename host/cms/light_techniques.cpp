@@ -61,9 +61,9 @@ LightTechniques buildLightTechniques(const LightSet& lights, const LightClusters
   t.sources.assign(size_t(t.emitterCount) + lightCount, shared::TechniqueRefGpu{0u, 1.0f});
   std::vector<double> share;
   auto newTechnique = [&](uint32_t cluster) {
-    t.clusterOf.push_back(cluster);
+    t.byTechnique.push_back(shared::TechniqueClusterGpu{cluster, 1.0f});
     share.push_back(0.0);
-    return uint32_t(t.clusterOf.size() - 1);
+    return uint32_t(t.byTechnique.size() - 1);
   };
   std::vector<uint32_t> clusterTechnique(clusterCount, shared::kNoPairSlot);
   // Lights in cluster order, so a cluster's techniques are contiguous (deterministic numbering).
@@ -89,14 +89,13 @@ LightTechniques buildLightTechniques(const LightSet& lights, const LightClusters
       }
     }
   }
-  t.techniqueCount = uint32_t(t.clusterOf.size());
+  t.techniqueCount = uint32_t(t.byTechnique.size());
   // Q_t in (0, 1]. A technique of zero probability is never sampled and its emitters emit nothing
   // (by power the emitter pmf is area x radiance), so its density p_k / Q_t is 0 anywhere it is evaluated;
   // share 1 keeps that division finite.
-  for (size_t s = 0; s < t.sources.size(); ++s) {
-    double q = share[t.sources[s].technique];
-    t.sources[s].share = q > 0.0 ? float(std::min(q, 1.0)) : 1.0f;
-  }
+  for (uint32_t i = 0; i < t.techniqueCount; ++i)
+    t.byTechnique[i].share = share[i] > 0.0 ? float(std::min(share[i], 1.0)) : 1.0f;
+  for (shared::TechniqueRefGpu& source : t.sources) source.share = t.byTechnique[source.technique].share;
   return t;
 }
 

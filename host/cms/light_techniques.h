@@ -40,7 +40,7 @@ enum class TechniqueGrouping { PerTriangle, EmitterGroups, PerCluster };
 
 struct LightTechniques {
   std::vector<shared::TechniqueRefGpu> sources;   // emitters, then punctual lights (by light index)
-  std::vector<uint32_t> clusterOf;                // per technique: the cluster holding it
+  std::vector<shared::TechniqueClusterGpu> byTechnique;   // per technique: its cluster and Q_t
   uint32_t techniqueCount = 0;
   uint32_t emitterCount = 0;                      // where the punctual lights' sources start
   TechniqueGrouping grouping = TechniqueGrouping::PerTriangle;

@@ -1,10 +1,12 @@
 #include "cms/sparse_solve.h"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <stdexcept>
 
-#include "shared/cms_solve.h"   // the policy constants only (no CELL_STATS: no buffer code)
+#include "shared/cms_pair_layout.h"   // the remainder techniques' ids
+#include "shared/cms_solve.h"         // the policy constants only (no CELL_STATS: no buffer code)
 
 namespace mixtrace {
 
@@ -36,6 +38,7 @@ SparseCellSolution solveSparseCell(const SparseCellStatistics& cell, const Spars
   SparseCellSolution out;
   out.alpha.assign(n, glm::dvec3(0.0));
   out.inSystem.assign(n, false);
+  out.mass.assign(n, 1.0);
   if (clusters != nullptr) out.clusterAlpha.assign(clusters->clusterCount, glm::dvec3(0.0));
 
   const SparseCellTotals& totals = cell.totals;
@@ -83,7 +86,6 @@ SparseCellSolution solveSparseCell(const SparseCellStatistics& cell, const Spars
 
   // Back substitution (with B out, l_t multiplies yB = 0: the techniques decouple).
   bool allFinite = fitsFloat(alphaB);
-  glm::dvec3 alphaSum = alphaB;
   uint32_t inSystem = 0;
   for (size_t i = 0; i < n; ++i) {
     if (!usable[i]) continue;
@@ -92,7 +94,20 @@ SparseCellSolution solveSparseCell(const SparseCellStatistics& cell, const Spars
     out.inSystem[i] = true;
     inSystem += 1;
     allFinite = allFinite && fitsFloat(out.alpha[i]);
-    alphaSum += out.alpha[i];
+  }
+  // The remainders' masses: P_R = 1 - the shares of their clusters' solved triangle pairs.
+  std::unordered_map<uint32_t, double> solvedShare;   // by cluster
+  for (size_t i = 0; i < n; ++i)
+    if (out.inSystem[i] && !shared::isRemainderTechnique(cell.pairs[i].technique))
+      solvedShare[cell.pairs[i].cluster] += cell.pairs[i].share;
+  glm::dvec3 alphaSum = alphaB;
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t t = cell.pairs[i].technique;
+    if (shared::isRemainderTechnique(t)) {
+      const auto found = solvedShare.find(shared::remainderTechniqueCluster(t));
+      out.mass[i] = std::clamp(1.0 - (found == solvedShare.end() ? 0.0 : found->second), 0.0, 1.0);
+    }
+    alphaSum += out.alpha[i] * out.mass[i];
   }
   for (int c = 0; c < 3; ++c)   // every vertex adds the sum (bound: shared/cms_solve.h)
     allFinite = allFinite && std::abs(alphaSum[c]) <= double(shared::kSolveMaxAlphaSum);
@@ -110,9 +125,11 @@ SparseCellSolution solveSparseCell(const SparseCellStatistics& cell, const Spars
   if (clusters != nullptr && !clusters->clusterOf.empty()) {
     for (size_t i = 0; i < n; ++i) {
       const uint32_t t = cell.pairs[i].technique;
-      if (t >= clusters->clusterOf.size() || clusters->clusterOf[t] >= clusters->clusterCount)
-        throw std::out_of_range("solveSparseCell: technique without a cluster");
-      out.clusterAlpha[clusters->clusterOf[t]] += out.alpha[i];
+      const bool remainder = shared::isRemainderTechnique(t);
+      const uint32_t k = remainder ? shared::remainderTechniqueCluster(t)
+                                   : (t < clusters->clusterOf.size() ? clusters->clusterOf[t] : clusters->clusterCount);
+      if (k >= clusters->clusterCount) throw std::out_of_range("solveSparseCell: technique without a cluster");
+      out.clusterAlpha[k] += out.alpha[i] * out.mass[i];
     }
   }
   return out;

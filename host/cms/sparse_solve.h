@@ -21,6 +21,11 @@
 //   - the cell is valid when it has at least minCellSamples samples, at least one technique in the
 //     system, every alpha finite and within float range (the GPU stores float), and
 //     |sum of alpha| <= kSolveMaxAlphaSum per channel. An invalid cell's alpha is 0 everywhere.
+//   - the integral of the control variate (alphaSum) is alpha_B + sum over triangle techniques of
+//     alpha_t (p_t is normalised) + sum over remainder techniques R of alpha_R P_R, where P_R = 1 -
+//     sum of Q_t over the triangle pairs of R's cluster that are in the system (clamped to [0, 1]):
+//     the mass of p_k on the triangles that use alpha_R, those without a solved pair (docs/estimator.md
+//     §4, "When the table fills").
 // Any alpha keeps the estimator unbiased, so each rule trades variance only. Every output is
 // finite for any input.
 #include <cstdint>
@@ -50,7 +55,8 @@ struct SparseCellSolution {
   bool valid = false;
   glm::dvec3 alphaB{0.0};
   std::vector<glm::dvec3> alpha;     // one per pair of the cell's statistics, in their order
-  std::vector<bool> inSystem;        // per pair: took part in the final system
+  std::vector<bool> inSystem;        // per pair: took part in the final system (a triangle pair: solved)
+  std::vector<double> mass;          // per pair: the integral of its density (1; P_R for a remainder)
   bool bInSystem = false;
   glm::dvec3 alphaSum{0.0};          // sum of alpha_t and alpha_B: the control variate's integral
   std::vector<glm::dvec3> clusterAlpha;   // sum of alpha_t per cluster (empty without a map)

@@ -55,13 +55,17 @@ struct SparseCellTotals {
   uint64_t samples = 0;   // every sample of the cell, whatever technique it touched
 };
 
-// One (cell, technique) pair.
+// One (cell, technique) pair. `technique` may be a remainder technique (shared/cms_pair_layout.h
+// remainderTechnique): the solve gives it the mass of its cluster's triangles that have no solved
+// pair in the cell, from the clusters and shares of the triangle pairs.
 struct SparsePairStatistics {
   uint32_t technique = kNoLightTechnique;
   double aTT = 0.0;
   double aTB = 0.0;
   glm::dvec3 bT{0.0};
   uint64_t samples = 0;   // the samples that touched this technique in this cell
+  uint32_t cluster = 0;   // a triangle technique's cluster (a remainder's is in its id)
+  double share = 1.0;     // a triangle technique's Q_t (unused for a remainder)
 };
 
 struct SparseCellStatistics {

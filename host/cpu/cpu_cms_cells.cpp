@@ -42,6 +42,7 @@ CpuCmsCells::CpuCmsCells(const CmsScene& cms, const Bounds& sceneBounds, const R
     techniquesMerged_ = t.merged();
     emitterCount_ = t.emitterCount;
     techniques_ = t.sources;
+    techniqueClusters_ = t.byTechnique;
     // Many more unknowns per cell than clusters: gather on (shared/cms_pair_state.h).
     cellSampleCap_ = shared::kPairCellSampleCap;
     // Room for every (cell, technique) pair, within the largest table (docs/estimator.md §4).
@@ -150,6 +151,10 @@ void CpuCmsCells::solvePairs() {
       for (uint32_t slot : *slots) {
         SparsePairStatistics pair;
         pair.technique = shared::pairKeyTechnique(pairKeys_[slot].load(std::memory_order_relaxed));
+        if (!shared::isRemainderTechnique(pair.technique)) {
+          pair.cluster = techniqueClusters_[pair.technique].cluster;
+          pair.share = double(techniqueClusters_[pair.technique].share);
+        }
         pair.aTT = pairStats_[shared::pairStatsAtt(slot)].load(std::memory_order_relaxed);
         pair.aTB = pairStats_[shared::pairStatsAtB(slot)].load(std::memory_order_relaxed);
         for (uint32_t c = 0; c < 3; ++c) pair.bT[c] = pairStats_[shared::pairStatsBt(slot, c)].load(std::memory_order_relaxed);
@@ -157,9 +162,12 @@ void CpuCmsCells::solvePairs() {
         statistics.pairs.push_back(pair);
       }
     const SparseCellSolution s = solveSparseCell(statistics, params);
-    for (size_t i = 0; slots && i < slots->size(); ++i)
+    for (size_t i = 0; slots && i < slots->size(); ++i) {
       for (uint32_t c = 0; c < 3; ++c)
         pairAlpha_[shared::pairAlphaIndex((*slots)[i], c)] = s.valid ? float(s.alpha[i][c]) : 0.0f;
+      // Solved: its alpha_t p_t applies (else its cluster's remainder; shared/cms_pair_terms.h).
+      pairAlpha_[shared::pairSolvedIndex((*slots)[i])] = s.valid && s.inSystem[i] ? 1.0f : 0.0f;
+    }
     float* out = &solution_[size_t(cell) * solutionStride];
     for (uint32_t c = 0; c < 3; ++c) {
       out[shared::solutionAlphaB(L_, c)] = s.valid ? float(s.alphaB[c]) : 0.0f;
@@ -204,6 +212,7 @@ void CpuCmsCells::reportPairs(RenderCounters& counters) const {
   counters.pairsUsed = pairOccupiedCount_.load();
   counters.pairSamples = pairCounters_[shared::kPairCounterPairSamples].load();
   counters.pairRefusedSamples = pairCounters_[shared::kPairCounterRefusedSamples].load();
+  counters.pairRemainderSamples = pairCounters_[shared::kPairCounterRemainderSamples].load();
   // As the GPU lays them out (shared/cms_pair_layout.h), plus alpha: the CPU's statistics are doubles.
   counters.pairBufferBytes = uint64_t(pairCapacity_) * (shared::kPairKeyBytes + 8u * shared::kPairStatsStride +
                                                         shared::kPairCountBytes + 4u * shared::kPairAlphaStride +

@@ -96,6 +96,7 @@ class CpuCmsCells {
   float pairAlpha(uint32_t i) const { return pairAlpha_[i]; }
   void addPairStatistic(uint32_t index, double value);
   void pairSlotClaimed(uint32_t slot) { pairOccupied_[pairOccupiedCount_.fetch_add(1, std::memory_order_relaxed)] = slot; }
+  uint32_t pairOccupiedCount() const { return pairOccupiedCount_.load(std::memory_order_relaxed); }
   void addPairSample(uint32_t slot) { pairSamples_[slot].fetch_add(1, std::memory_order_relaxed); }
   void countPair(uint32_t counter) { pairCounters_[counter].fetch_add(1, std::memory_order_relaxed); }
 
@@ -132,6 +133,7 @@ class CpuCmsCells {
   uint32_t emitterCount_ = 0;
   uint32_t pairCapacity_ = 0;
   std::vector<shared::TechniqueRefGpu> techniques_;     // per technique source
+  std::vector<shared::TechniqueClusterGpu> techniqueClusters_;   // per technique (the solve's remainder masses)
   std::unique_ptr<std::atomic<uint64_t>[]> pairKeys_;   // 0 = empty slot; never freed
   std::unique_ptr<std::atomic<double>[]> pairStats_;    // kPairStatsStride per slot
   std::unique_ptr<std::atomic<uint32_t>[]> pairSamples_;

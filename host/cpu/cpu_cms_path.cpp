@@ -97,17 +97,13 @@ class CmsPath {
     float peff = bsdfSampleMixtureDensity(j, cj, pj, pending.pdf);
     const double w = cells_.statisticsWeight(pending.cell, pending.throughput, ctx_.pixel);
     const bool cv = controlVariate_ && cellSolutionValid(pending.cell, L_);
-    if (pairs_) {
-      // Per technique: the hit's triangle's technique, when the hit is a light point at all.
-      uint slot = kNoPairSlot;
-      float pt = 0.0f;
-      if (j != kNoCell) {
-        uint source = techniqueSourceOfHit(hit.triangle);
-        pt = techniqueDensity(source, pj);
-        slot = pairSlotOfSample(pairCapacity_, pending.cell, source, w > 0.0);
-      }
-      if (cv) radiance_ -= pairControlVariateTerm(pending.throughput, pending.cell, L_, slot, pt, pending.pdf, peff);
-      if (j != kNoCell) addPairStatistics(slot, pt, pending.pdf, peff, le * pending.bsdfCos, w);
+    if (pairs_ && j != kNoCell) {
+      // Per technique: the hit's triangle's technique.
+      radiance_ -= settlePairSample(pairCapacity_, pending.cell, L_, j, techniqueSourceOfHit(hit.triangle), pj,
+                                    pending.pdf, peff, le * pending.bsdfCos, w, pending.throughput, cv);
+    } else if (pairs_) {
+      // No light technique: g = alpha_B p_B alone.
+      if (cv) radiance_ -= pairControlVariateTerm(pending.throughput, pending.cell, L_, kNoPairSlot, 0.0f, pending.pdf, peff);
     } else if (cv) {
       radiance_ -= controlVariateTerm(pending.throughput, pending.cell, L_, j, pj, pending.pdf, peff);
     }
@@ -167,11 +163,8 @@ class CmsPath {
     const double w = cells_.statisticsWeight(v.cell, v.beta, ctx_.pixel);
     if (pairs_) {
       // Per technique: the sampled point's triangle (or punctual light), even when hidden or blocked.
-      uint source = techniqueSourceOfLightSample(ls, cells_.emitterCount());
-      float pt = techniqueDensity(source, pk);
-      uint slot = pairSlotOfSample(pairCapacity_, v.cell, source, w > 0.0);
-      if (v.cv) radiance_ -= pairControlVariateTerm(v.beta, v.cell, L_, slot, pt, pBSeen, peffSeen);
-      addPairStatistics(slot, pt, pBSeen, peffSeen, fSeen, w);
+      radiance_ -= settlePairSample(pairCapacity_, v.cell, L_, k, techniqueSourceOfLightSample(ls, cells_.emitterCount()),
+                                    pk, pBSeen, peffSeen, fSeen, w, v.beta, v.cv);
     } else if (v.cv) {
       radiance_ -= controlVariateTerm(v.beta, v.cell, L_, k, pk, pBSeen, peffSeen);
     }

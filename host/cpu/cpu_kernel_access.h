@@ -28,6 +28,7 @@
 #define PAIR_KEY_CAS(slot, expected, desired) \
   (::mixtrace::boundCpuKernel().cms->pairKeyCompareSwap(slot, expected, desired))
 #define PAIR_SLOT_CLAIMED(slot) (::mixtrace::boundCpuKernel().cms->pairSlotClaimed(slot))
+#define PAIR_OCCUPIED_COUNT() (::mixtrace::boundCpuKernel().cms->pairOccupiedCount())
 #define TECHNIQUE(source) (::mixtrace::boundCpuKernel().cms->technique(source))
 #define PAIR_ALPHA(i) (::mixtrace::boundCpuKernel().cms->pairAlpha(i))
 #define CMS_ADD_PAIR_STAT(index, value) (::mixtrace::boundCpuKernel().cms->addPairStatistic(index, value))

@@ -60,6 +60,7 @@ void writeStatsJson(const std::string& path, const RenderStats& s) {
       j["cms_pairs_used"] = s.cmsPairsUsed;
       j["cms_pair_samples"] = s.cmsPairSamples;
       j["cms_pair_refused_samples"] = s.cmsPairRefusedSamples;
+      j["cms_pair_remainder_samples"] = s.cmsPairRemainderSamples;
       j["cms_pair_buffer_bytes"] = s.cmsPairBufferBytes;
     }
   }

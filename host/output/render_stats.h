@@ -30,7 +30,8 @@ struct RenderStats {
   std::string cmsCvTechniques;
   uint64_t cmsTechniques = 0;
   bool cmsTechniquesMerged = false;
-  uint64_t cmsPairTableCapacity = 0, cmsPairsUsed = 0, cmsPairSamples = 0, cmsPairRefusedSamples = 0;
+  uint64_t cmsPairTableCapacity = 0, cmsPairsUsed = 0, cmsPairSamples = 0, cmsPairRefusedSamples = 0,
+           cmsPairRemainderSamples = 0;
   uint64_t cmsPairBufferBytes = 0;
   uint32_t validationErrors = 0;
   std::map<std::string, double> passMs;  // GPU time per pass (Vulkan timestamp queries)

@@ -82,7 +82,7 @@ PUSH_CONSTANTS_FIT(PairLookupConstants)
 constexpr uint32_t kRowBindings[] = {SCENE_BUFFERS(ROW_BINDING) PATH_STATE_BUFFERS(ROW_BINDING)
                                          CMS_STATE_BUFFERS(ROW_BINDING) METHOD_BUFFERS(ROW_BINDING)
                                          BUFFER_WINDOW(ROW_BINDING) PAIR_LOOKUP_BUFFERS(ROW_BINDING)
-                                         BUFFER_SPARSE_SCRATCH(ROW_BINDING)};
+                                         BUFFER_SPARSE_SCRATCH(ROW_BINDING) BUFFER_TECHNIQUE_CLUSTERS(ROW_BINDING)};
 #undef ROW_BINDING
 constexpr bool bindingsDistinct() {
   for (size_t i = 0; i < std::size(kRowBindings); ++i)

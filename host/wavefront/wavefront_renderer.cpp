@@ -96,6 +96,9 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   buffers_.add(shared::BINDING_TECHNIQUES,
                makeBuffer(ctx, pairTechniques_ ? cms->techniques.sources : std::vector<shared::TechniqueRefGpu>(1),
                           "CV techniques"));
+  buffers_.add(shared::BINDING_TECHNIQUE_CLUSTERS,
+               makeBuffer(ctx, pairTechniques_ ? cms->techniques.byTechnique : std::vector<shared::TechniqueClusterGpu>(1),
+                          "CV technique clusters"));
   BufferBindings sceneBuffers;
   scene_.offerTo(sceneBuffers);
   bindings_ = buffers_.bindings(sceneBuffers);
@@ -352,6 +355,7 @@ void WavefrontRenderer::reportPairs(RenderCounters& c) const {
   const std::vector<uint32_t> counters = buffer(shared::BINDING_PAIR_COUNTERS).downloadAll<uint32_t>();
   c.pairSamples = counters[shared::kPairCounterPairSamples];
   c.pairRefusedSamples = counters[shared::kPairCounterRefusedSamples];
+  c.pairRemainderSamples = counters[shared::kPairCounterRemainderSamples];
   // Keys, statistics and counts (shared/cms_pair_layout.h), alpha, the occupied list, and the
   // sparse solve's own buffers.
   c.pairBufferBytes = uint64_t(pairCapacity_) * (shared::kPairBytesPerSlot + 4u * shared::kPairAlphaStride) +

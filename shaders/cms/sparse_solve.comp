@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require   // cms_pair_table.h's insert (unused here) names the 64-bit swap
 // The sparse per-cell solve of the per-triangle control variate (the stages, the maths and the
 // scratch layout: shared/cms_sparse_solve.h; the rules: host/cms/sparse_solve.h). One pipeline,
 // one dispatch per stage (STAGE): one invocation per cell or per occupied pair-table slot, spread over a
@@ -9,6 +10,9 @@
 #define PASS_BUFFERS SPARSE_SOLVE_BUFFERS
 #define PASS_CONSTANTS SparseSolveConstants
 #include "gpu/buffers.glsl"
+// findPair: a solved pair's remainder pair (the solve never inserts).
+#include "gpu/pair_table_access.glsl"
+#include "shared/cms_pair_table.h"
 
 layout(local_size_x = kWorkgroupSize) in;
 layout(constant_id = SPEC_SPARSE_STAGE) const uint STAGE = kSparseInitCells;
@@ -57,6 +61,7 @@ vec3 cellBB(uint cell) {
 
 struct Pair {
   uint cell;
+  uint technique;
   float aTT;
   float aTB;
   vec3 bT;
@@ -70,6 +75,7 @@ bool readPair(uint slot, out Pair p) {
   p.usable = false;
   if (key == uint64_t(0)) return false;
   p.cell = pairKeyCell(key);
+  p.technique = pairKeyTechnique(key);
   if (p.cell >= pc.cellCount) return false;
   p.aTT = pairStats[pairStatsAtt(slot)];
   p.aTB = pairStats[pairStatsAtB(slot)];
@@ -82,6 +88,21 @@ void writePairAlpha(uint slot, vec3 alpha) {
   pairAlpha[pairAlphaIndex(slot, 0u)] = alpha.x;
   pairAlpha[pairAlphaIndex(slot, 1u)] = alpha.y;
   pairAlpha[pairAlphaIndex(slot, 2u)] = alpha.z;
+}
+
+// The fourth float of a slot's coefficients (shared/cms_pair_state.h): a triangle pair's solved
+// flag, a remainder pair's sum of the shares Q_t of its cluster's solved pairs, gathered through
+// this uint view of the same buffer by compare-and-swap on the bits.
+layout(scalar, binding = BINDING_PAIR_ALPHA) buffer PairAlphaBits { uint pairAlphaBits[]; };
+
+void addSolvedShare(uint remainderSlot, float share) {
+  uint i = pairSolvedIndex(remainderSlot);
+  uint seen = pairAlphaBits[i];
+  for (;;) {
+    uint expected = seen;
+    seen = atomicCompSwap(pairAlphaBits[i], expected, floatBitsToUint(uintBitsToFloat(expected) + share));
+    if (seen == expected) break;
+  }
 }
 
 // s_t, l_t = A_tB s_t s_B and z_t = b_t s_t of a usable pair.
@@ -190,11 +211,15 @@ void pairStage(uint item) {
     return;
   }
   if (STAGE == kSparseClearPairs) {
-    if ((scratchFlags(cell) & kSparseFlagValid) == 0u) writePairAlpha(slot, vec3(0.0));
+    if ((scratchFlags(cell) & kSparseFlagValid) != 0u) return;
+    writePairAlpha(slot, vec3(0.0));
+    pairAlpha[pairSolvedIndex(slot)] = 0.0;
     return;
   }
   if (!readPair(slot, p)) return;
+  bool remainder = isRemainderTechnique(p.technique);
   if (STAGE == kSparseMaxPairs) {
+    if (remainder) pairAlpha[pairSolvedIndex(slot)] = 0.0;   // its sum of shares restarts (kSparseAlphaPairs)
     if (!p.usable) return;
     atomicMax(sparseScratch[scratchIndex(p.cell, kSparseMaxDiagonal)], floatBitsToUint(p.aTT));
     atomicAdd(sparseScratch[scratchIndex(p.cell, kSparsePairsIn)], 1u);
@@ -218,9 +243,25 @@ void pairStage(uint item) {
         atomicOr(sparseScratch[scratchIndex(p.cell, kSparseFlags)], kSparseFlagNonFinite);
         alpha = vec3(0.0);   // the cell is invalid; nothing non-finite is ever stored
       }
-      scratchAdd3(p.cell, kSparseAlphaSum, alpha);
+      // A triangle technique's p_t integrates to 1; a remainder's alpha_R P_R joins the sum in
+      // kSparseRemainderPairs, once every solved pair has given its share.
+      if (!remainder) scratchAdd3(p.cell, kSparseAlphaSum, alpha);
     }
     writePairAlpha(slot, alpha);
+    if (remainder) return;   // its fourth float is the sum of shares, gathered now
+    pairAlpha[pairSolvedIndex(slot)] = p.usable ? 1.0 : 0.0;
+    if (!p.usable) return;
+    TechniqueClusterGpu t = techniqueClusters[p.technique];
+    uint remainderSlot = findPair(pc.pairCapacity, p.cell, remainderTechnique(t.cluster));
+    if (remainderSlot != kNoPairSlot) addSolvedShare(remainderSlot, t.share);
+  } else if (STAGE == kSparseRemainderPairs) {
+    // alpha_R P_R, P_R = 1 - the shares of the cluster's solved pairs: the mass of p_k where alpha_R
+    // applies (host/cms/sparse_solve.h).
+    if (!remainder || !p.usable) return;
+    float mass = clamp(1.0 - uintBitsToFloat(pairAlphaBits[pairSolvedIndex(slot)]), 0.0, 1.0);
+    vec3 alpha = vec3(pairAlpha[pairAlphaIndex(slot, 0u)], pairAlpha[pairAlphaIndex(slot, 1u)],
+                      pairAlpha[pairAlphaIndex(slot, 2u)]);
+    scratchAdd3(p.cell, kSparseAlphaSum, alpha * mass);
   }
 }
 

@@ -107,12 +107,12 @@ void addRadiance(uint path, vec3 value) {
 // A BSDF sample's pair terms once shade found its hit on a light technique (kShadowRayBsdfPair;
 // host/cpu/cpu_cms_path.cpp settlePendingBsdfSample): its pair, the control-variate term with the
 // pair's alpha_t, its statistics. The cell's own terms were added by shade.
-void settleBsdfPair(uint cell, uint source, float pj, float pB, float peff, vec3 f, vec3 beta, uint path, float w) {
+void settleBsdfPair(uint cell, uint j, uint source, float pj, float pB, float peff, vec3 f, vec3 beta, uint path,
+                    float w) {
   uint L = pc.clusterCount;
-  float pt = techniqueDensity(source, pj);
-  uint slot = pairSlotOfSample(pc.pairCapacity, cell, source, w > 0.0);
-  if (CMS_CONTROL_VARIATE && cellSolutionValid(cell, L)) addRadiance(path, -pairControlVariateTerm(beta, cell, L, slot, pt, pB, peff));
-  addPairStatistics(slot, pt, pB, peff, f, w);
+  bool cv = CMS_CONTROL_VARIATE && cellSolutionValid(cell, L);
+  vec3 term = settlePairSample(pc.pairCapacity, cell, L, j, source, pj, pB, peff, f, w, beta, cv);
+  if (cv) addRadiance(path, -term);
 }
 #endif
 
@@ -130,11 +130,9 @@ void settleLightSample(uint cell, uint k, float pk, float ck, float pB, vec3 f, 
   float w = sampleWeight(beta, path, cell);
 #ifdef PASS_PAIR_BUFFERS
   if (CMS_PAIR_TECHNIQUES) {
-    float pt = techniqueDensity(source, pk);
-    uint slot = pairSlotOfSample(pc.pairCapacity, cell, source, w > 0.0);
-    if (CMS_CONTROL_VARIATE && cellSolutionValid(cell, L))
-      addRadiance(path, -pairControlVariateTerm(beta, cell, L, slot, pt, pB, peff));
-    addPairStatistics(slot, pt, pB, peff, f, w);
+    bool cv = CMS_CONTROL_VARIATE && cellSolutionValid(cell, L);
+    vec3 term = settlePairSample(pc.pairCapacity, cell, L, k, source, pk, pB, peff, f, w, beta, cv);
+    if (cv) addRadiance(path, -term);
   } else
 #endif
   if (CMS_CONTROL_VARIATE && cellSolutionValid(cell, L)) {

@@ -7,3 +7,4 @@
 #define PAIR_KEY_CAS(slot, expected, desired) atomicCompSwap(pairKeys[slot], expected, desired)
 #define PAIR_SLOT_CLAIMED(slot) \
   pairOccupied[kPairOccupiedFirst + atomicAdd(pairOccupied[kPairOccupiedCount], 1u)] = (slot)
+#define PAIR_OCCUPIED_COUNT() pairOccupied[kPairOccupiedCount]

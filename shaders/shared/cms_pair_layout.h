@@ -58,6 +58,23 @@ SHARED_FN uint64_t pairKey(uint cell, uint technique) {
 SHARED_FN uint pairKeyCell(uint64_t key) { return uint(key >> 32) - 1u; }
 SHARED_FN uint pairKeyTechnique(uint64_t key) { return uint(key); }
 
+// The remainder technique of cluster k in a cell (docs/estimator.md §4, "When the table fills"):
+// the coarser technique a sample falls back to when the full table refuses its own (cell, t)
+// pair. Its density is p_k restricted to the triangles of k that have no solved pair in the cell,
+// so it stays disjoint from every triangle technique there (the system stays an arrowhead). Its id
+// sets the top bit, which no triangle technique reaches (techniques are counted in the thousands).
+const uint kRemainderTechniqueBit = 0x80000000u;
+SHARED_FN uint remainderTechnique(uint cluster) { return kRemainderTechniqueBit | cluster; }
+SHARED_FN bool isRemainderTechnique(uint technique) { return (technique & kRemainderTechniqueBit) != 0u; }
+SHARED_FN uint remainderTechniqueCluster(uint technique) { return technique & ~kRemainderTechniqueBit; }
+
+// A triangle technique's pair is claimed only while fewer than this many slots are occupied: the
+// last quarter of the table is kept for remainder pairs, which are claimed only once the table
+// refuses triangle pairs, i.e. when it is otherwise full. A soft bound (invocations that read the
+// count at once may all claim), and never reached by a table sized for its scene
+// (pairTableCapacityFor keeps the load at or below 1/2).
+SHARED_FN uint pairTriangleSlotLimit(uint capacity) { return capacity - capacity / 4u; }
+
 // The first slot of a key's probe sequence. Techniques are numbered light by light, triangle by
 // triangle, so a vertex's neighbours in a cell reach neighbouring techniques: a run of
 // kPairRunLength consecutive techniques of one cell starts at one hashed slot and fills the slots

@@ -16,8 +16,10 @@
 //
 // Keys persist for the whole render (slots are never freed, so a pair keeps its slot and its
 // alpha across iterations); statistics are zeroed per cell when the cell restarts (a new selection,
-// docs/estimator.md §7). A pair the full table refuses has alpha_t = 0 (its samples still add to the
-// cell's A_BB, b_B): unbiased, and counted in PAIR_COUNTERS.
+// docs/estimator.md §7). A sample whose pair the full table refuses adds to its cluster's remainder
+// technique in the cell instead (shared/cms_pair_layout.h remainderTechnique), and one whose
+// remainder pair is refused too adds to the cell's A_BB, b_B only (alpha_t = 0): unbiased either
+// way, and counted in PAIR_COUNTERS.
 #ifndef MIXTRACE_SHARED_CMS_PAIR_STATE_H
 #define MIXTRACE_SHARED_CMS_PAIR_STATE_H
 #include "shared/buffer_table.h"
@@ -34,6 +36,10 @@
 // Indexed by technique source: emitter index e for a point on an area light's emitter e (EmitterGpu),
 // emitterCount + light for a punctual light (its own technique, counting measure).
 #define BUFFER_TECHNIQUES(X) X(TECHNIQUES, techniques, 38, READ_ONLY, TechniqueRefGpu, UPLOADED, "CV techniques")
+// Indexed by technique: its cluster and its share Q_t, for the solve's mass of each remainder
+// technique (shared/cms_sparse_solve.h kSparseRemainderPairs).
+#define BUFFER_TECHNIQUE_CLUSTERS(X) \
+  X(TECHNIQUE_CLUSTERS, techniqueClusters, 47, READ_ONLY, TechniqueClusterGpu, UPLOADED, "CV technique clusters")
 // Counters the host reads after the render (kPairCounter*), for the stats JSON.
 #define BUFFER_PAIR_COUNTERS(X) \
   X(PAIR_COUNTERS, pairCounters, 39, READ_BACK, uint, PAIR_COUNTER_SLOTS, "CMS pair counters")
@@ -53,10 +59,16 @@
 
 SHARED_BEGIN
 CMS_PAIR_BUFFERS(BUFFER_BINDING_CONSTANT)
+BUFFER_TECHNIQUE_CLUSTERS(BUFFER_BINDING_CONSTANT)
 
-// alpha_t of the pair in `slot`, RGB at kPairAlphaStride * slot + channel.
-const uint kPairAlphaStride = 3u;
+// alpha_t of the pair in `slot`, RGB at kPairAlphaStride * slot + channel, then one more float:
+//   - a triangle technique's pair: 1 when the last solve put it in the system of a valid cell (its
+//     alpha_t p_t is used), else 0 (its samples take the remainder technique's alpha_R p_k instead);
+//   - a remainder technique's pair: the solve's own (the sum of Q_t over the cell's solved pairs of
+//     its cluster, gathered on the GPU as float bits), read by nothing else.
+const uint kPairAlphaStride = 4u;
 SHARED_FN uint pairAlphaIndex(uint slot, uint channel) { return kPairAlphaStride * slot + channel; }
+SHARED_FN uint pairSolvedIndex(uint slot) { return kPairAlphaStride * slot + 3u; }
 
 // The technique a light point belongs to, and the technique's share Q_t of its cluster's light
 // sampling: the summed probability, once the cluster is chosen, of picking one of its triangles
@@ -66,6 +78,12 @@ SHARED_FN uint pairAlphaIndex(uint slot, uint channel) { return kPairAlphaStride
 struct TechniqueRefGpu {
   uint technique;   // in [0, techniqueCount)
   float share;      // Q_t, in (0, 1]
+};
+
+// A technique's cluster and share Q_t (the share of every source of it, as in TechniqueRefGpu).
+struct TechniqueClusterGpu {
+  uint cluster;
+  float share;
 };
 
 // A cell of the per-technique control variate gathers far past kCellSampleCap (shared/cms_layouts.h):
@@ -81,8 +99,9 @@ const uint kPairMinSamples = 8u;
 
 // PAIR_COUNTERS entries.
 const uint kPairCounterPairSamples = 0u;      // light-technique samples that found or claimed their pair
-const uint kPairCounterRefusedSamples = 1u;   // light-technique samples whose pair the table refused
-const uint kPairCounterSlots = 2u;            // PAIR_COUNTER_SLOTS: the counters' extent
+const uint kPairCounterRefusedSamples = 1u;   // ... whose own pair and remainder pair the table refused
+const uint kPairCounterRemainderSamples = 2u; // ... whose own pair was refused, added to the remainder's
+const uint kPairCounterSlots = 3u;            // PAIR_COUNTER_SLOTS: the counters' extent
 
 // PAIR_OCCUPIED entries.
 const uint kPairOccupiedCount = 0u;   // how many slots are claimed

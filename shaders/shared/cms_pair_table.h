@@ -12,18 +12,19 @@
 // gets exactly one slot. Slots are never freed or overwritten; the host clears the whole key
 // array (fill with 0) when the statistics restart.
 //
-// When no free slot is found within kPairProbes (a full or crowded table), the pair gets
-// kNoPairSlot. The caller counts that and gives the sample no light-technique term (alpha_t = 0:
-// the cell's alpha_B p_B alone, shared/cms_pair_terms.h): unbiased, so a full table costs
-// variance, never correctness. A coarser technique for refused pairs is designed, not built
-// (docs/estimator.md §4, "When the table fills").
+// When no free slot is found within kPairProbes (a full or crowded table), or a triangle pair
+// would take one of the last quarter of the slots (kept for remainder pairs), the pair gets
+// kNoPairSlot. The caller (shared/cms_pair_terms.h settlePairSample) then gathers the sample in
+// its cluster's remainder technique, or counts it refused when that pair does not fit either:
+// unbiased either way, so a full table costs variance, never correctness (docs/estimator.md §4,
+// "When the table fills").
 //
 // The includer defines PAIR_KEY_LOAD(slot) -> the uint64 key in that slot, and
 // PAIR_KEY_CAS(slot, expected, desired) -> the previous key (an atomic compare-and-swap on the key
 // array): GLSL binds them to a buffer and atomicCompSwap, C++ to std::atomic<uint64_t>; and
 // PAIR_SLOT_CLAIMED(slot), called once per slot by the invocation whose swap claimed it, which
 // appends the slot to the list of occupied slots (shared/cms_pair_state.h PAIR_OCCUPIED) that the
-// solve walks.
+// solve walks, and PAIR_OCCUPIED_COUNT() -> that list's length.
 #ifndef MIXTRACE_SHARED_CMS_PAIR_TABLE_H
 #define MIXTRACE_SHARED_CMS_PAIR_TABLE_H
 #include "shared/cms_layouts.h"
@@ -43,6 +44,9 @@ SHARED_FN uint findOrInsertPair(uint capacity, uint cell, uint technique) {
     uint64_t seen = PAIR_KEY_LOAD(slot);
     if (seen == key) return slot;
     if (seen == uint64_t(0)) {
+      // The last quarter of the table is the remainder pairs' (pairTriangleSlotLimit).
+      if (!isRemainderTechnique(technique) && PAIR_OCCUPIED_COUNT() >= pairTriangleSlotLimit(capacity))
+        return kNoPairSlot;
       // Another invocation may claim this slot between the load and the swap: then the swap
       // returns its key, which is ours (the same pair, raced) or another's (probe on).
       uint64_t previous = PAIR_KEY_CAS(slot, uint64_t(0), key);

@@ -3,7 +3,8 @@
 // per-cluster terms they replace where the cell's coefficients are per technique: the selection,
 // the densities p_k, p_B, p_eff and the cell statistics stay those of cms_vertex_terms.h; a sample
 // that lies on a light technique t also finds its (cell, t) pair (shared/cms_pair_table.h), reads
-// alpha_t there and adds A_tt, A_tB, b_t to it.
+// alpha_t there and adds A_tt, A_tB, b_t to it (settlePairSample; when the table is full, its
+// cluster's remainder technique serves instead).
 //
 // Only the pipelines of the per-triangle control variate include this header (the CPU reference
 // always does; it costs nothing there).
@@ -24,48 +25,34 @@
 #include "shared/lights.h"
 SHARED_BEGIN_WITH_BUFFERS
 
-// p_t(z) = p_k(z) / Q_t: the normalised density of the technique holding `source`, from the
-// density p_k of its cluster's light sampling.
-SHARED_FN float techniqueDensity(uint source, float pk) { return pk / TECHNIQUE(source).share; }
-
-// The pair slot of a sample of `source` at a vertex of `cell`: claimed when the sample gathers
-// statistics, only looked up when it does not (a pair absent from the table has alpha_t = 0, like
-// one the table refused). kNoPairSlot: absent or refused.
-SHARED_FN uint pairSlotOfSample(uint capacity, uint cell, uint source, bool gathers) {
-  uint technique = TECHNIQUE(source).technique;
-  return gathers ? findOrInsertPair(capacity, cell, technique) : findPair(capacity, cell, technique);
-}
-
-// alpha_t of the pair in `slot` (0 for kNoPairSlot; not named pairAlpha: GLSL declares the PAIR_ALPHA
-// row by that name). Written only by the solve between
-// iterations, so it never depends on the samples it is applied to.
+// alpha of the pair in `slot` (0 for kNoPairSlot; not named pairAlpha: GLSL declares the PAIR_ALPHA
+// row by that name). Written only by the solve between iterations, so it never depends on the
+// samples it is applied to.
 SHARED_FN vec3 pairCoefficient(uint slot) {
   if (slot == kNoPairSlot) return vec3(0.0f);
   return vec3(PAIR_ALPHA(pairAlphaIndex(slot, 0u)), PAIR_ALPHA(pairAlphaIndex(slot, 1u)),
               PAIR_ALPHA(pairAlphaIndex(slot, 2u)));
 }
 
+// Whether the last solve put the triangle pair in `slot` into its valid cell's system.
+SHARED_FN bool pairSolved(uint slot) { return slot != kNoPairSlot && PAIR_ALPHA(pairSolvedIndex(slot)) > 0.5f; }
+
 // What a sample subtracts at a vertex of a cell with a valid solution: T g(z) / p_eff(z) with
-// g(z) = alpha_t p_t(z) + alpha_B p_B(z) (slot = kNoPairSlot, pt = 0: alpha_B p_B alone). The
-// integral T (sum_t alpha_t + alpha_B) is cms_vertex_terms.h's controlVariateIntegral: the solve
-// stores it as the cell's solutionAlphaSum.
-SHARED_FN vec3 pairControlVariateTerm(vec3 T, uint cell, uint L, uint slot, float pt, float pB, float peff) {
-  vec3 g = cellAlphaB(cell, L) * pB + pairCoefficient(slot) * pt;
+// g(z) = alpha p(z) + alpha_B p_B(z), alpha and p those of the light technique the sample lies on
+// (slot = kNoPairSlot, p = 0: alpha_B p_B alone). The integral T (sum alpha + alpha_B) is
+// cms_vertex_terms.h's controlVariateIntegral: the solve stores it as the cell's solutionAlphaSum.
+SHARED_FN vec3 pairControlVariateTerm(vec3 T, uint cell, uint L, uint slot, float p, float pB, float peff) {
+  vec3 g = cellAlphaB(cell, L) * pB + pairCoefficient(slot) * p;
   return T * g / peff;
 }
 
-// Adds a light-technique sample's terms to its pair: A_tt += w (p_t/p_eff)^2, A_tB += w (p_t/p_eff)
-// (p_B/p_eff), b_t += w f (p_t/p_eff) / p_eff and one sample (ratios first, as
-// addSampleStatistics forms them). The cell's own A_BB and b_B come from addSampleStatistics. A
-// refused pair (kNoPairSlot while gathering) adds nothing here and is counted: its alpha_t stays 0.
-SHARED_FN void addPairStatistics(uint slot, CMS_STAT_REAL pt, CMS_STAT_REAL pB, CMS_STAT_REAL peff, vec3 f,
+// Adds a light-technique sample's terms to the pair in `slot` (not kNoPairSlot), whose technique
+// has density p there: A_tt += w (p/p_eff)^2, A_tB += w (p/p_eff) (p_B/p_eff), b_t += w f (p/p_eff)
+// / p_eff and one sample (ratios first, as addSampleStatistics forms them). The cell's own A_BB and
+// b_B come from addSampleStatistics.
+SHARED_FN void addPairStatistics(uint slot, CMS_STAT_REAL p, CMS_STAT_REAL pB, CMS_STAT_REAL peff, vec3 f,
                                  CMS_STAT_REAL w) {
-  if (!(w > CMS_STAT_REAL(0))) return;
-  if (slot == kNoPairSlot) {
-    CMS_COUNT_PAIR(kPairCounterRefusedSamples);
-    return;
-  }
-  CMS_STAT_REAL rt = pt / peff;
+  CMS_STAT_REAL rt = p / peff;
   CMS_STAT_REAL rB = pB / peff;
   CMS_ADD_PAIR_STAT(pairStatsAtt(slot), w * rt * rt);
   CMS_ADD_PAIR_STAT(pairStatsAtB(slot), w * rt * rB);
@@ -74,7 +61,45 @@ SHARED_FN void addPairStatistics(uint slot, CMS_STAT_REAL pt, CMS_STAT_REAL pB, 
     for (uint c = 0u; c < 3u; ++c) CMS_ADD_PAIR_STAT(pairStatsBt(slot, c), CMS_STAT_REAL(f[c]) * scale);
   }
   CMS_ADD_PAIR_SAMPLE(slot);
-  CMS_COUNT_PAIR(kPairCounterPairSamples);
+}
+
+// The light-technique side of one sample whose point z lies on the technique of `source`, in
+// cluster k, at a vertex of `cell` (docs/estimator.md §4): returns what the sample subtracts when
+// the cell's control variate is in use (`cv`; else 0), and adds its statistics when it gathers
+// (w > 0). p_k, p_B, p_eff, f and the throughput T as at the call sites (host/cpu/cpu_cms_path.cpp,
+// shaders/gpu/cms_statistics.glsl).
+//   - The control variate: alpha_t p_t(z) when the sample's own pair was solved, else the cluster's
+//     remainder technique, alpha_R p_k(z) (0 when the cell has none). The solve gives alpha_R the
+//     integral P_R = 1 - sum of Q_t over the solved pairs of k, exactly the mass of p_k where it
+//     applies, so any alpha keeps the estimator unbiased.
+//   - The statistics: to the sample's own pair (claimed when new); when the full table refuses
+//     it, to the remainder pair with density p_k; when that is refused too, to nothing but the
+//     cell's A_BB and b_B. Each outcome is counted (kPairCounter*).
+SHARED_FN vec3 settlePairSample(uint capacity, uint cell, uint L, uint k, uint source, float pk, float pB,
+                                float peff, vec3 f, CMS_STAT_REAL w, vec3 T, bool cv) {
+  TechniqueRefGpu ref = TECHNIQUE(source);
+  float pt = pk / ref.share;   // p_t = p_k / Q_t: the normalised density of the sample's technique
+  bool gathers = w > CMS_STAT_REAL(0);
+  uint own = gathers ? findOrInsertPair(capacity, cell, ref.technique) : findPair(capacity, cell, ref.technique);
+  vec3 term = vec3(0.0f);
+  if (cv) {
+    if (pairSolved(own)) term = pairControlVariateTerm(T, cell, L, own, pt, pB, peff);
+    else term = pairControlVariateTerm(T, cell, L, findPair(capacity, cell, remainderTechnique(k)), pk, pB, peff);
+  }
+  if (!gathers) return term;
+  if (own != kNoPairSlot) {
+    addPairStatistics(own, CMS_STAT_REAL(pt), CMS_STAT_REAL(pB), CMS_STAT_REAL(peff), f, w);
+    CMS_COUNT_PAIR(kPairCounterPairSamples);
+    return term;
+  }
+  uint remainder = findOrInsertPair(capacity, cell, remainderTechnique(k));
+  if (remainder == kNoPairSlot) {
+    CMS_COUNT_PAIR(kPairCounterRefusedSamples);
+    return term;
+  }
+  addPairStatistics(remainder, CMS_STAT_REAL(pk), CMS_STAT_REAL(pB), CMS_STAT_REAL(peff), f, w);
+  CMS_COUNT_PAIR(kPairCounterRemainderSamples);
+  return term;
 }
 
 SHARED_END_WITH_BUFFERS

@@ -20,12 +20,16 @@
 //   kSparseSchurPairs  pairs: sum l_t^2 and sum l_t z_t (RGB), l_t = A_tB s_t s_B, z_t = b_t s_t.
 //   kSparsePivotCells  cells: the Schur pivot 1 - sum l_t^2 (B dropped at or below
 //                      kSolvePivotFloor), y_B, alpha_B.
-//   kSparseAlphaPairs  pairs: alpha_t = (z_t - l_t y_B) s_t into PAIR_ALPHA, its finiteness and
-//                      sum alpha_t (RGB).
+//   kSparseAlphaPairs  pairs: alpha_t = (z_t - l_t y_B) s_t into PAIR_ALPHA, its finiteness, sum
+//                      alpha_t (RGB) over triangle techniques, the solved flag of a triangle pair,
+//                      and a solved pair's share Q_t added to its cluster's remainder pair, if any
+//                      (whose sum kSparseMaxPairs zeroed).
+//   kSparseRemainderPairs pairs: sum alpha_R P_R over the remainder techniques, P_R = 1 - the
+//                      shares their solved pairs gave (clamped to [0, 1]; docs/estimator.md §4).
 //   kSparseFinishCells cells: validity (min samples, a technique in the system, all finite, |sum
 //                      alpha| <= kSolveMaxAlphaSum, the kSolveControlVariate flag); writes
 //                      solutionAlphaB, solutionValid, solutionAlphaSum (zeros and 0 when invalid).
-//   kSparseClearPairs  pairs: PAIR_ALPHA = 0 for the pairs of a cell that is not valid, so a
+//   kSparseClearPairs  pairs: PAIR_ALPHA = 0 (and not solved) for the pairs of a cell that is not valid, so a
 //                      reader never sees a coefficient its cell does not use (the double solve's
 //                      alpha of an invalid cell is 0 everywhere, too).
 // and, recorded apart after the per-cluster solve (host/wavefront/passes/sparse_solve_pass.h):
@@ -94,7 +98,8 @@ const uint kSparseFinishCells = 7u;
 const uint kSparseClearPairs = 8u;
 const uint kSparseRestartPairs = 9u;
 const uint kSparsePairArgs = 10u;   // one invocation: the pair stages' dispatch from the occupied count
-const uint kSparseStageCount = 11u;
+const uint kSparseRemainderPairs = 11u;
+const uint kSparseStageCount = 12u;
 
 // Push constants of the sparse solve pass (cms/sparse_solve_interface.h).
 struct SparseSolveConstants {

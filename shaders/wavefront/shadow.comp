@@ -25,7 +25,7 @@ void main() {
   if (i >= queues.shadowCount) return;
   ShadowRay s = shadowQueue[i];
   if (CMS_PAIR_TECHNIQUES && (s.flags & kShadowRayBsdfPair) != 0u) {
-    settleBsdfPair(s.cell, s.source, s.pk, s.pB, s.ck, s.integrand, s.throughput, s.path, s.contribution.x);
+    settleBsdfPair(s.cell, s.cluster, s.source, s.pk, s.pB, s.ck, s.integrand, s.throughput, s.path, s.contribution.x);
     return;
   }
   // A hidden light point (per-triangle control variate) is settled here untraced.

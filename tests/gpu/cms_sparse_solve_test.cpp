@@ -102,7 +102,7 @@ class CmsSparseSolve : public ::testing::Test {
 
   // Uploads the problem. `solution` (optional) is the cell solution before the solve (else NaN).
   struct Uploaded {
-    Buffer keys, pairStats, pairSamples, pairAlpha, occupied, cellStats, cellSamples, solution, defaults;
+    Buffer keys, pairStats, pairSamples, pairAlpha, occupied, cellStats, cellSamples, solution, defaults, techniques;
     std::vector<std::vector<uint32_t>> slotOf;
   };
   static Uploaded upload(const Problem& pr, const std::vector<float>* solution = nullptr) {
@@ -116,6 +116,9 @@ class CmsSparseSolve : public ::testing::Test {
     const uint32_t n = uint32_t(pr.cells.size()), total = n + uint32_t(pr.ghosts.size());
     std::vector<float> cstats(size_t(total) * shared::cellStatsStride(kL), 7.0f);
     std::vector<uint32_t> csamples(total, 0);
+    // Each triangle technique's cluster and share, as its pairs state them (the renderers upload
+    // them from the scene's light techniques).
+    std::vector<shared::TechniqueClusterGpu> techniques(1, shared::TechniqueClusterGpu{0u, 1.0f});
     Uploaded u;
     u.slotOf.resize(total);
     for (uint32_t c = 0; c < total; ++c) {
@@ -142,6 +145,10 @@ class CmsSparseSolve : public ::testing::Test {
         for (uint32_t ch = 0; ch < 3; ++ch) pstats[shared::pairStatsBt(placed, ch)] = float(p.bT[ch]);
         psamples[placed] = uint32_t(p.samples);
         u.slotOf[c].push_back(placed);
+        if (!shared::isRemainderTechnique(p.technique)) {
+          if (techniques.size() <= p.technique) techniques.resize(p.technique + 1, shared::TechniqueClusterGpu{0u, 1.0f});
+          techniques[p.technique] = shared::TechniqueClusterGpu{p.cluster, float(p.share)};
+        }
       }
     }
     std::vector<float> sol(size_t(total) * shared::cellSolutionStride(kL), kSentinel);
@@ -155,6 +162,7 @@ class CmsSparseSolve : public ::testing::Test {
     u.cellSamples = makeBuffer(*ctx_, csamples, "cell samples");
     u.solution = makeBuffer(*ctx_, sol, "cell solution");
     u.defaults = makeBuffer(*ctx_, std::vector<float>(kL, 1.0f / kL), "cluster defaults");
+    u.techniques = makeBuffer(*ctx_, techniques, "technique clusters");
     return u;
   }
 
@@ -166,7 +174,8 @@ class CmsSparseSolve : public ::testing::Test {
                    {shared::BINDING_PAIR_OCCUPIED, &u.occupied},
                    {shared::BINDING_CELL_STATS, &u.cellStats},
                    {shared::BINDING_CELL_SAMPLES, &u.cellSamples},
-                   {shared::BINDING_CELL_SOLUTION, &u.solution}});
+                   {shared::BINDING_CELL_SOLUTION, &u.solution},
+                   {shared::BINDING_TECHNIQUE_CLUSTERS, &u.techniques}});
   }
 
   static GpuResult download(const Uploaded& u) {
@@ -271,6 +280,8 @@ Comparison compare(const Problem& pr, const GpuResult& r, double tolerance) {
       EXPECT_EQ(maxAbs(gB), 0.0) << where;
       EXPECT_EQ(maxAbs(gSum), 0.0) << where;
       for (const Vec& a : gAlpha) EXPECT_EQ(maxAbs(a), 0.0) << where << ": an invalid cell's pair alpha";
+      for (uint32_t slot : r.slotOf[c])
+        EXPECT_EQ(r.pairAlpha[shared::pairSolvedIndex(slot)], 0.0f) << where << ": an invalid cell's pair is not solved";
       continue;
     }
     if (!refValid) continue;
@@ -284,6 +295,9 @@ Comparison compare(const Problem& pr, const GpuResult& r, double tolerance) {
       size = std::max(size, s * maxAbs(ref.alpha[i]));
       err = std::max(err, s * maxAbs(gAlpha[i] - ref.alpha[i]));
       if (!ref.inSystem[i]) EXPECT_EQ(maxAbs(gAlpha[i]), 0.0) << where << ": dropped technique " << i;
+      if (!shared::isRemainderTechnique(cell.pairs[i].technique))   // the render's choice of alpha_t or alpha_R
+        EXPECT_EQ(r.pairAlpha[shared::pairSolvedIndex(r.slotOf[c][i])], ref.inSystem[i] ? 1.0f : 0.0f)
+            << where << ": solved flag of technique " << i;
       absSum += maxAbs(ref.alpha[i]);
     }
     double rel = size > 0.0 ? err / size : err;
@@ -386,6 +400,75 @@ TEST_F(CmsSparseSolve, RandomCellsOf1To200PairsMatchTheDoubleSolve) {
   Comparison c = compare(pr, r, 2e-4);
   EXPECT_GT(c.valid, cells * 3 / 4);
   std::printf("random cells: %u valid, %u invalid, worst scaled error %.3g\n", c.valid, c.invalid, c.worstError);
+}
+
+// Remainder techniques (the table-full fallback, docs/estimator.md §4): cells whose triangles of
+// kL clusters carry shares, plus one remainder pair per cluster, some triangle pairs dropped by
+// the minimum sample count. The GPU's sum of alpha (alpha_R weighted by P_R = 1 - the shares of
+// the solved pairs of its cluster) and its solved flags agree with the double solve's.
+TEST_F(CmsSparseSolve, RemainderTechniquesGetTheMassOfTheirClustersUnsolvedTriangles) {
+  std::mt19937_64 rng(29);
+  SparseStatisticsTable table(1u << 20);
+  Problem pr;
+  const uint32_t cells = 200, trianglesPerCluster = 40;
+  for (uint32_t c = 0; c < cells; ++c) {
+    gatherRandomCell(table, c, kL * trianglesPerCluster, 1 + uint32_t(rng() % 10), rng);
+    // Remainder samples: density p_k on the cluster's triangles that lost their pair.
+    for (uint32_t k = 0; k < kL; ++k) {
+      std::uniform_real_distribution<double> u(0.1, 2.0);
+      for (uint32_t i = 0; i < 20 + rng() % 40; ++i) {
+        SparseSample s;
+        s.technique = shared::remainderTechnique(k);
+        s.pT = u(rng);
+        s.pB = i % 3 == 0 ? 0.0 : u(rng);
+        s.pEff = 0.3 * s.pT + s.pB;
+        s.f = Vec(u(rng), u(rng), u(rng)) * (s.pT + s.pB) * (u(rng) - 0.3);
+        table.add(c, s);
+      }
+    }
+  }
+  // Shares: triangle t of cluster t % kL holds a random share of its cluster, normalised so that
+  // the cluster's shares sum to 1 (P_R then lies in [0, 1] without the clamp).
+  std::vector<double> share(kL * trianglesPerCluster);
+  std::vector<double> clusterSum(kL, 0.0);
+  for (uint32_t t = 0; t < share.size(); ++t) clusterSum[t % kL] += share[t] = 0.2 + double(rng() % 100) / 100.0;
+  for (uint32_t t = 0; t < share.size(); ++t) share[t] = double(float(share[t] / clusterSum[t % kL]));
+  uint32_t remainders = 0;
+  for (uint32_t c = 0; c < cells; ++c) {
+    SparseCellStatistics cell = roundedToFloat(*table.cell(c));
+    for (SparsePairStatistics& p : cell.pairs) {
+      if (shared::isRemainderTechnique(p.technique)) {
+        ++remainders;
+        continue;
+      }
+      p.cluster = p.technique % kL;
+      p.share = share[p.technique];
+    }
+    pr.cells.push_back(cell);
+  }
+  pr.capacity = shared::pairTableCapacityFor(pairsOf(pr));
+  pr.settings = cvSettings(64, 4);   // pairs of 1..3 samples are dropped: their mass is the remainder's
+  GpuResult r = solve(pr);
+  Comparison c = compare(pr, r, 2e-4);
+  EXPECT_EQ(remainders, cells * kL);
+  EXPECT_GT(c.valid, cells * 3 / 4);
+  // The remainders' masses matter: without them the sums would differ by alpha_R (1 - P_R).
+  double largestRemainderTerm = 0.0;
+  uint32_t partial = 0;   // remainders whose cluster has solved triangles in the cell
+  const SparseSolveParams params = doubleParams(pr.settings);
+  for (const SparseCellStatistics& cell : pr.cells) {
+    SparseCellSolution ref = solveSparseCell(cell, params);
+    for (size_t i = 0; ref.valid && i < cell.pairs.size(); ++i)
+      if (shared::isRemainderTechnique(cell.pairs[i].technique)) {
+        EXPECT_GE(ref.mass[i], 0.0);
+        EXPECT_LE(ref.mass[i], 1.0);
+        partial += ref.mass[i] < 1.0;
+        largestRemainderTerm = std::max(largestRemainderTerm, maxAbs(ref.alpha[i]) * (1.0 - ref.mass[i]));
+      }
+  }
+  EXPECT_GT(largestRemainderTerm, 1e-3);
+  EXPECT_GT(partial, remainders / 2);
+  std::printf("remainder cells: %u valid, %u invalid, worst scaled error %.3g\n", c.valid, c.invalid, c.worstError);
 }
 
 TEST_F(CmsSparseSolve, WithoutTheControlVariateFlagEveryCellIsInvalidAndEveryAlphaZero) {

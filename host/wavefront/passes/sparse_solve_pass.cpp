@@ -58,7 +58,7 @@ namespace {
 const char* const kStageLabels[shared::kSparseStageCount] = {
     "sparse_solve.init",  "sparse_solve.max",   "sparse_solve.mean",   "sparse_solve.ridge",  "sparse_solve.schur",
     "sparse_solve.pivot", "sparse_solve.alpha", "sparse_solve.finish", "sparse_solve.clear", "sparse_restart",
-    "sparse_solve.args"};
+    "sparse_solve.args", "sparse_solve.remainder"};
 }  // namespace
 
 shared::SparseSolveConstants GpuSparseSolver::constants(const SparseSolveSettings& s) const {
@@ -107,6 +107,7 @@ void GpuSparseSolver::record(VkCommandBuffer cmd, const SparseSolveSettings& s, 
   pairStage(cmd, s, shared::kSparseSchurPairs, timer);
   stage(cmd, s, shared::kSparsePivotCells, cells, timer);
   pairStage(cmd, s, shared::kSparseAlphaPairs, timer);
+  pairStage(cmd, s, shared::kSparseRemainderPairs, timer);
   stage(cmd, s, shared::kSparseFinishCells, cells, timer);
   pairStage(cmd, s, shared::kSparseClearPairs, timer);
 }

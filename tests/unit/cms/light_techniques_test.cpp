@@ -70,7 +70,7 @@ void expectValidTechniques(const PreparedScene& scene, const LightClusters& lc, 
   const LightSet& ls = scene.lights;
   ASSERT_EQ(t.emitterCount, ls.emitters.size());
   ASSERT_EQ(t.sources.size(), ls.emitters.size() + ls.lights.size());
-  ASSERT_EQ(t.clusterOf.size(), t.techniqueCount);
+  ASSERT_EQ(t.byTechnique.size(), t.techniqueCount);
   EXPECT_LE(t.techniqueCount, budget);
   std::vector<double> summed(t.techniqueCount, 0.0);
   std::vector<float> share(t.techniqueCount, -1.0f);
@@ -83,10 +83,11 @@ void expectValidTechniques(const PreparedScene& scene, const LightClusters& lc, 
     for (uint32_t s = first; s < first + count; ++s) {
       const shared::TechniqueRefGpu& ref = t.sources[s];
       ASSERT_LT(ref.technique, t.techniqueCount);
-      EXPECT_EQ(t.clusterOf[ref.technique], lc.lightCluster[light]) << "source " << s;
+      EXPECT_EQ(t.byTechnique[ref.technique].cluster, lc.lightCluster[light]) << "source " << s;
       summed[ref.technique] += double(lc.lightPmfInCluster[light]) * (area ? ls.emitters[s].pmf : 1.0);
       if (share[ref.technique] < 0.0f) share[ref.technique] = ref.share;
       EXPECT_EQ(share[ref.technique], ref.share) << "one share per technique";
+      EXPECT_EQ(t.byTechnique[ref.technique].share, ref.share) << "the solve's share is the sources' share";
       lightsOf[ref.technique].insert(light);
     }
   }
@@ -95,7 +96,7 @@ void expectValidTechniques(const PreparedScene& scene, const LightClusters& lc, 
     EXPECT_GT(share[i], 0.0f);
     EXPECT_LE(share[i], 1.0f);
     EXPECT_NEAR(share[i], summed[i], 1e-6 * summed[i] + 1e-12);
-    perCluster[t.clusterOf[i]] += share[i];
+    perCluster[t.byTechnique[i].cluster] += share[i];
     if (t.grouping != TechniqueGrouping::PerCluster) EXPECT_EQ(lightsOf[i].size(), 1u) << "technique " << i;
   }
   for (double q : perCluster) EXPECT_NEAR(q, 1.0, 1e-5);
@@ -153,7 +154,7 @@ TEST(LightTechniques, SharesAreWhatClusterSamplingPicks) {
         observed[t.sources[e].technique] += 1.0;
       }
       for (uint32_t s = 0; s < t.emitterCount; ++s)
-        if (t.clusterOf[t.sources[s].technique] == k) expected[t.sources[s].technique] = n * t.sources[s].share;
+        if (t.byTechnique[t.sources[s].technique].cluster == k) expected[t.sources[s].technique] = n * t.sources[s].share;
       std::vector<double> o, x;
       for (auto& [tech, count] : expected) {
         x.push_back(count);

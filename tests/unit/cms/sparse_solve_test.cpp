@@ -14,6 +14,7 @@
 #include "cms/sparse_solve.h"
 #include "cms/sparse_statistics.h"
 #include "shared/cms_layouts.h"
+#include "shared/cms_pair_layout.h"
 #include "shared/cms_solve.h"
 
 namespace mixtrace {
@@ -197,6 +198,61 @@ TEST(SparseSolve, RecoversTheCoefficientsOfAnIntegrandInTheSpanOfTheDensities) {
   EXPECT_LE(maxAbs(s.alphaB - betaB), 1e-9);
   for (size_t i = 0; i < s.alpha.size(); ++i)
     EXPECT_LE(maxAbs(s.alpha[i] - beta[table.cell(3)->pairs[i].technique]), 1e-9);
+}
+
+// The table-full fallback (docs/estimator.md §4): cluster 0 holds four triangles of shares 0.1,
+// 0.2, 0.3, 0.4. Triangles 0 and 1 have pairs with many samples (solved), triangle 2 a pair with
+// too few (dropped), triangle 3 none (its samples went to the remainder). Cluster 1 has a remainder
+// pair and no solved triangle. With f in the span of the densities the solve recovers every
+// coefficient, and the integral counts alpha_R of cluster 0 with P_R = 1 - 0.1 - 0.2 = 0.7 (the
+// mass of triangles 2 and 3, which use alpha_R) and cluster 1's with 1.
+TEST(SparseSolve, ARemainderTechniqueIntegratesToTheMassOfItsClustersUnsolvedTriangles) {
+  const double share[4] = {0.1, 0.2, 0.3, 0.4};
+  const Vec beta[2] = {Vec(0.5, 1.0, 2.0), Vec(-0.3, 0.2, 0.9)};   // triangles 0, 1
+  const Vec betaR0(1.5, 0.25, -0.5), betaR1(0.75, 0.5, 0.1), betaB(0.2, 0.4, 0.6);
+  const uint32_t r0 = shared::remainderTechnique(0), r1 = shared::remainderTechnique(1);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(0.05, 3.0);
+  SparseStatisticsTable table(100);
+  for (int i = 0; i < 600; ++i) {
+    SparseSample s;
+    const uint32_t kind = i % 6;   // 0, 1: triangles; 2: triangle 2 (few samples); 3, 4: remainders; 5: none
+    s.technique = kind < 2 ? kind : kind == 2 ? (i < 12 ? 2u : kNoLightTechnique) : kind == 3 ? r0 : kind == 4 ? r1 : kNoLightTechnique;
+    s.pT = s.technique == kNoLightTechnique ? 0.0 : u(rng);
+    s.pB = u(rng);
+    s.pEff = 0.2 * s.pT + s.pB;
+    const Vec light = kind < 2 ? beta[kind] : s.technique == r0 ? betaR0 : s.technique == r1 ? betaR1 : Vec(0.0);
+    s.f = betaB * s.pB + light * s.pT;
+    table.add(0, s);
+  }
+  SparseCellStatistics cell = *table.cell(0);
+  for (SparsePairStatistics& p : cell.pairs)
+    if (!shared::isRemainderTechnique(p.technique)) p.share = share[p.technique];   // cluster 0
+  SparseSolveParams params;
+  params.ridge = 0.0;
+  params.minTechniqueSamples = 8;   // triangle 2 has 2
+  SparseCellSolution sol = solveSparseCell(cell, params);
+  ASSERT_TRUE(sol.valid);
+  EXPECT_LE(maxAbs(sol.alphaB - betaB), 1e-9);
+  Vec expectedSum = sol.alphaB;
+  uint32_t seen = 0;
+  for (size_t i = 0; i < cell.pairs.size(); ++i) {
+    const uint32_t t = cell.pairs[i].technique;
+    if (t == 2u) {
+      EXPECT_FALSE(sol.inSystem[i]) << "too few samples";
+      EXPECT_EQ(sol.mass[i], 1.0);
+      continue;
+    }
+    EXPECT_TRUE(sol.inSystem[i]) << t;
+    const Vec expected = t == r0 ? betaR0 : t == r1 ? betaR1 : beta[t];
+    EXPECT_LE(maxAbs(sol.alpha[i] - expected), 1e-9) << t;
+    const double mass = t == r0 ? 0.7 : 1.0;
+    EXPECT_NEAR(sol.mass[i], mass, 1e-15) << t;
+    expectedSum += expected * mass;
+    ++seen;
+  }
+  EXPECT_EQ(seen, 4u);
+  EXPECT_LE(maxAbs(sol.alphaSum - expectedSum), 1e-9);
 }
 
 // The rules are today's per-cluster solve's: with one pair per cluster, the sparse solve and the
