@@ -65,6 +65,8 @@ WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitiv
     }
   }
 
+  if (attributeAccessor(primitive, "COLOR_0") >= 0)
+    ctx.ignoring("COLOR_0", "vertex colours are not implemented; the base colour is used alone");
   const int uvAccessor = attributeAccessor(primitive, "TEXCOORD_0");
   if (uvAccessor >= 0) {
     const AccessorReader uvs(ctx, uvAccessor, "TEXCOORD_0 of " + where);

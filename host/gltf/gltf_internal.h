@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,12 @@ struct LoadContext {
   [[noreturn]] void fail(const std::string& message) const;
   // mixtrace::warn("<path>: <message>").
   void warning(const std::string& message) const;
+  // Names a property the file uses and the renderer does not honour, once per property and file:
+  // "<path>: ignoring <property>: <why>" (issue 14: say what is ignored, never drop it in silence).
+  void ignoring(const std::string& property, const std::string& why) const;
+
+ private:
+  mutable std::set<std::string> ignored_;
 };
 
 // --- gltf_files.cpp: what the loader may read, and how.
@@ -74,6 +81,11 @@ class AssetFiles {
 // Images are NOT decoded here: their encoded bytes are kept (Image::as_is) and decoded on demand
 // by decodeImage once the data they live in has been validated.
 void parseGltfFile(LoadContext& ctx);
+// "requires unsupported glTF extension(s) X, Y" for the extensions of `required` (a file's
+// extensionsRequired) the renderer cannot honour; "" when there are none. parseGltfFile also reads
+// the list from the JSON text where the parser fails first, so that a Draco or meshopt file is
+// refused for what it is, not for the data tinygltf cannot read.
+std::string unsupportedRequiredExtensions(const std::vector<std::string>& required);
 // Throws when [ and { nest deeper than kMaxJsonNesting in `json` (strings skipped).
 void checkJsonNesting(const LoadContext& ctx, const unsigned char* json, size_t size);
 // Joins the non-empty lines of a (tinygltf) message with "; " so errors stay one line.
@@ -152,6 +164,8 @@ class MaterialTable {
 
  private:
   int textureFor(const tinygltf::TextureInfo& info, int materialIndex, const char* slot);
+  // Names each material property the renderer does not honour (LoadContext::ignoring).
+  void warnIgnoredProperties(const tinygltf::Material& src) const;
   // False (after a warning) when the texture has no image this loader can read.
   bool convertTexture(int textureIndex, Texture& out);
 

@@ -291,6 +291,7 @@ class SceneBuilder {
                    " trailing vertices/indices that do not form a whole triangle");
     }
     if (skinned_ || morphed_) ctx_.warning("skinning and morph targets are not supported; meshes keep their rest pose");
+    if (!model_.animations.empty()) ctx_.ignoring("animations", "a still image renders the scene as its nodes place it");
   }
 
   const LoadContext& ctx_;

@@ -90,10 +90,19 @@ uint32_t MaterialTable::materialFor(int gltfMaterial) {
   m.metallicRoughnessTexture = textureFor(pbr.metallicRoughnessTexture, gltfMaterial, "metallicRoughnessTexture");
   m.emissiveTexture = textureFor(src.emissiveTexture, gltfMaterial, "emissiveTexture");
   m.flags = src.doubleSided ? shared::kMaterialDoubleSided : 0u;
+  warnIgnoredProperties(src);
 
   materialSlots_[size_t(gltfMaterial)] = int(scene_.materials.size());
   scene_.materials.push_back(m);
   return uint32_t(materialSlots_[size_t(gltfMaterial)]);
+}
+
+void MaterialTable::warnIgnoredProperties(const tinygltf::Material& src) const {
+  if (src.normalTexture.index >= 0) ctx_.ignoring("normalTexture", "normal maps are not implemented; the geometric shading normals are used");
+  if (src.occlusionTexture.index >= 0)
+    ctx_.ignoring("occlusionTexture", "ambient occlusion maps are for rasterizers; a path tracer computes occlusion itself");
+  if (src.alphaMode == "MASK" || src.alphaMode == "BLEND")
+    ctx_.ignoring("alphaMode " + src.alphaMode, "transparency is not implemented; the surface is rendered opaque");
 }
 
 int MaterialTable::textureFor(const tinygltf::TextureInfo& info, int materialIndex, const char* slot) {

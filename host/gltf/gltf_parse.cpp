@@ -9,6 +9,8 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "gltf/gltf_internal.h"
 #include "gltf/gltf_limits.h"
 #include "gltf/json_nesting.h"
@@ -21,6 +23,10 @@ namespace gltf {
 void LoadContext::fail(const std::string& message) const { throw Error(path + ": " + message); }
 
 void LoadContext::warning(const std::string& message) const { warn(path + ": " + message); }
+
+void LoadContext::ignoring(const std::string& property, const std::string& why) const {
+  if (ignored_.insert(property).second) warning("ignoring " + property + ": " + why);
+}
 
 namespace {
 
@@ -105,17 +111,23 @@ bool looksLikeJson(const std::vector<unsigned char>& bytes, size_t& start) {
   return i < bytes.size() && bytes[i] == '{';
 }
 
+// extensionsRequired straight from the JSON text, for a file tinygltf could not parse: empty when
+// the text is not JSON or the list is absent or malformed (the parser's own error then stands).
+std::vector<std::string> requiredExtensionsOf(const unsigned char* json, size_t size) {
+  std::vector<std::string> names;
+  const nlohmann::json doc = nlohmann::json::parse(json, json + size, nullptr, false);
+  if (!doc.is_object()) return names;
+  const auto it = doc.find("extensionsRequired");
+  if (it == doc.end() || !it->is_array()) return names;
+  for (const nlohmann::json& name : *it)
+    if (name.is_string()) names.push_back(name.get<std::string>());
+  return names;
+}
+
 void checkExtensions(const LoadContext& ctx) {
   const tinygltf::Model& model = ctx.model;
-  std::vector<std::string> refused;
-  for (const std::string& name : model.extensionsRequired) {
-    if (!supportedExtensions().count(name)) refused.push_back(name);
-  }
-  if (!refused.empty()) {
-    std::string list;
-    for (const std::string& name : refused) list += (list.empty() ? "" : ", ") + name;
-    throw Error(ctx.path + " requires unsupported glTF extension" + (refused.size() > 1 ? "s " : " ") + list);
-  }
+  const std::string refused = unsupportedRequiredExtensions(model.extensionsRequired);
+  if (!refused.empty()) throw Error(ctx.path + " " + refused);
   std::set<std::string> reported;
   for (const std::string& name : model.extensionsUsed) {
     if (supportedExtensions().count(name) || !reported.insert(name).second) continue;
@@ -124,6 +136,18 @@ void checkExtensions(const LoadContext& ctx) {
 }
 
 }  // namespace
+
+std::string unsupportedRequiredExtensions(const std::vector<std::string>& required) {
+  std::string list;
+  size_t count = 0;
+  for (const std::string& name : required) {
+    if (supportedExtensions().count(name)) continue;
+    list += (list.empty() ? "" : ", ") + name;
+    ++count;
+  }
+  if (count == 0) return "";
+  return std::string("requires unsupported glTF extension") + (count > 1 ? "s " : " ") + list;
+}
 
 // tinygltf's messages are often several lines, and quote whole data URIs (megabytes of base64);
 // the user gets one short line.
@@ -163,24 +187,39 @@ void parseGltfFile(LoadContext& ctx) {
   std::string err;
   std::string warnings;
   bool ok = false;
+  const unsigned char* json = nullptr;   // the JSON text, once the container checks passed
+  size_t jsonSize = 0;
+  // Where the parser fails, a file that requires an extension we cannot honour is refused for that
+  // (its Draco or meshopt data, or the files holding it, are what the parser could not read).
+  auto refuseUnsupportedRequired = [&]() {
+    if (!json) return;
+    const std::string refused = unsupportedRequiredExtensions(requiredExtensionsOf(json, jsonSize));
+    if (!refused.empty()) throw Error(ctx.path + " " + refused);
+  };
   try {
     if (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0) {
       const uint32_t length = validateGlbContainer(ctx, bytes);
-      checkJsonNesting(ctx, bytes.data() + 20, readLittleEndian32(&bytes[12]));
+      json = bytes.data() + 20;
+      jsonSize = readLittleEndian32(&bytes[12]);
+      checkJsonNesting(ctx, json, jsonSize);
       ok = parser.LoadBinaryFromMemory(&ctx.model, &err, &warnings, bytes.data(), length, baseDir);
     } else {
       size_t start = 0;
       if (!looksLikeJson(bytes, start)) ctx.fail("is not a glTF file (neither a JSON object nor binary glTF)");
-      checkJsonNesting(ctx, bytes.data() + start, bytes.size() - start);
-      ok = parser.LoadASCIIFromString(&ctx.model, &err, &warnings, reinterpret_cast<const char*>(bytes.data() + start),
-                                      static_cast<unsigned int>(bytes.size() - start), baseDir);
+      json = bytes.data() + start;
+      jsonSize = bytes.size() - start;
+      checkJsonNesting(ctx, json, jsonSize);
+      ok = parser.LoadASCIIFromString(&ctx.model, &err, &warnings, reinterpret_cast<const char*>(json),
+                                      static_cast<unsigned int>(jsonSize), baseDir);
     }
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
     // tinygltf throws from a few corners (e.g. std::vector::at on an empty BIN chunk).
+    refuseUnsupportedRequired();
     ctx.fail("malformed glTF: " + condenseMessage(e.what()));
   }
+  if (!ok) refuseUnsupportedRequired();
   // A refused external file is fatal even where tinygltf only warns (images): the file asked for
   // something it must not have, and its own message would name the path it built.
   if (!files.firstRefusal().empty()) ctx.fail(files.firstRefusal());

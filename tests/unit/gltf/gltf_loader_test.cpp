@@ -725,6 +725,65 @@ TEST_F(GltfLoaderTest, RefusesRequiredUnsupportedExtensionNamingIt) {
       << message;
 }
 
+// A Draco file whose compressed data lives in a file the parser cannot read (here: absent) is
+// refused for the extension it requires, not with the parser's "file not found".
+TEST_F(GltfLoaderTest, RefusesRequiredUnsupportedExtensionEvenWhenTheParserFailsFirst) {
+  GltfBuilder b;
+  b.doc["extensionsUsed"] = {"KHR_draco_mesh_compression", "EXT_meshopt_compression"};
+  b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression", "EXT_meshopt_compression"};
+  b.scene({b.node({{"mesh", b.triangleMesh()}})});
+  // The written file with one more buffer, in a file that does not exist.
+  auto withMissingBuffer = [&](const std::string& name) {
+    const std::string path = b.writeGltf(dir_, name);
+    json written = json::parse(std::ifstream(path));
+    written["buffers"].push_back({{"uri", "compressed.bin"}, {"byteLength", 64}});
+    std::ofstream(path) << written.dump(1);
+    return path;
+  };
+  const std::string message = loadError(withMissingBuffer("scene.gltf"));
+  expectOneLine(message);
+  EXPECT_NE(message.find("scene.gltf requires unsupported glTF extensions KHR_draco_mesh_compression, "
+                         "EXT_meshopt_compression"),
+            std::string::npos)
+      << message;
+  // Without the requirement the parser's own error stands.
+  b.doc.erase("extensionsRequired");
+  const std::string parserError = loadError(withMissingBuffer("optional.gltf"));
+  EXPECT_EQ(parserError.find("requires unsupported"), std::string::npos) << parserError;
+  EXPECT_NE(parserError.find("optional.gltf"), std::string::npos) << parserError;
+}
+
+// Properties the renderer does not honour are named, each once however often the file uses it
+// (two materials with normal and occlusion maps and MASK, two primitives with COLOR_0, an
+// animation); what it honours is not named.
+TEST_F(GltfLoaderTest, NamesEachIgnoredPropertyOnce) {
+  GltfBuilder b;
+  const int pos = b.vec3s({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  const int colours = b.vec3s({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+  const json ignoredMaterial = {{"normalTexture", {{"index", 0}}},
+                                {"occlusionTexture", {{"index", 0}}},
+                                {"alphaMode", "MASK"},
+                                {"doubleSided", true}};
+  b.doc["materials"] = json::array({ignoredMaterial, ignoredMaterial, {{"alphaMode", "OPAQUE"}}});
+  b.doc["textures"] = json::array({json::object()});   // no source: never decoded, only named
+  b.scene({b.node({{"mesh", b.mesh(json::array({{{"attributes", {{"POSITION", pos}, {"COLOR_0", colours}}}, {"material", 0}},
+                                                 {{"attributes", {{"POSITION", pos}, {"COLOR_0", colours}}}, {"material", 1}},
+                                                 {{"attributes", {{"POSITION", pos}}}, {"material", 2}}}))}})});
+  b.doc["animations"] = json::array({{{"channels", json::array()}, {"samplers", json::array()}}});
+  std::string warnings;
+  const Scene scene = loadCapturing(b.writeGltf(dir_), warnings);
+  EXPECT_EQ(scene.triangles.size(), 3u);
+  auto count = [&](const std::string& what) {
+    size_t n = 0;
+    for (size_t at = warnings.find(what); at != std::string::npos; at = warnings.find(what, at + 1)) ++n;
+    return n;
+  };
+  for (const char* property : {"ignoring normalTexture", "ignoring occlusionTexture: ambient occlusion maps are for rasterizers",
+                               "ignoring alphaMode MASK", "ignoring COLOR_0", "ignoring animations"})
+    EXPECT_EQ(count(property), 1u) << property << " in: " << warnings;
+  EXPECT_EQ(count("OPAQUE"), 0u) << warnings;
+}
+
 TEST_F(GltfLoaderTest, WarnsAboutOptionalUnsupportedExtensionAndLoads) {
   GltfBuilder b;
   b.doc["extensionsUsed"] = {"KHR_texture_transform", "KHR_lights_punctual"};
