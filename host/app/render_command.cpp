@@ -129,7 +129,8 @@ RenderStats collectStats(const RenderOptions& o, const PreparedScene& prepared, 
 
 }  // namespace
 
-int runRender(const RenderOptions& o) {
+int runRender(const RenderOptions& given) {
+  RenderOptions o = given;   // the film's shape may still come from the file (applyFileAspectRatio)
   setQuiet(o.quiet);
   const std::string scenePath = o.scene.empty() ? defaultScenePath() : o.scene;
   // Before anything slow: a typo in an output's name must not cost a render.
@@ -139,7 +140,9 @@ int runRender(const RenderOptions& o) {
   // The device next, before the scene: a wrong --device must not cost loading a large scene.
   std::unique_ptr<VulkanContext> ctx;
   if (o.backend != "cpu") ctx = std::make_unique<VulkanContext>(ContextOptions{o.device, o.validation});
-  const PreparedScene prepared = prepareScene(loadSceneForRendering(scenePath, o));
+  Scene scene = loadSceneForRendering(scenePath, o);
+  applyFileAspectRatio(o, scene);
+  const PreparedScene prepared = prepareScene(std::move(scene));
   const MethodSetup setup = setUpMethod(prepared, o, o.method);
   const std::unique_ptr<Renderer> renderer = makeRenderer(o, ctx.get(), prepared, setup);
   const double setupSeconds = secondsSince(setupStart);

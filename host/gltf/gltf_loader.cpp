@@ -208,6 +208,12 @@ class SceneBuilder {
     } else {
       ctx_.warning("camera " + std::to_string(node.camera) + " has an invalid yfov; using " + std::to_string(out.yfov));
     }
+    const double aspect = camera.perspective.aspectRatio;   // optional in glTF: 0 when absent
+    if (std::isfinite(aspect) && aspect > 0.0 && aspect <= 1e4 && aspect >= 1e-4) {
+      out.aspectRatio = float(aspect);
+    } else if (aspect != 0.0) {
+      ctx_.warning("camera " + std::to_string(node.camera) + " has an invalid aspectRatio; the image size decides");
+    }
     out.fromFile = true;
   }
 

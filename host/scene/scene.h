@@ -48,6 +48,7 @@ struct Camera {
   glm::vec3 forward{0.0f, 0.0f, -1.0f};
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float yfov = 0.8f;        // vertical field of view, radians
+  float aspectRatio = 0.0f; // the file camera's width / height; 0: not given (the film decides)
   bool fromFile = false;    // false: framed from the scene bounds (defaultFraming); true: set by the
                             // file or on the command line (--look-from, ...: session/scene_camera.h)
 };

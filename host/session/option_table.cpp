@@ -12,7 +12,6 @@ namespace mixtrace {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr long long kMaxImageSide = 16384;
 constexpr long long kMaxDepthLimit = 64;
 
 std::string onOff(bool on) { return on ? "on" : "off"; }
@@ -189,9 +188,15 @@ std::vector<OptionRow> samplingRows() {
                     [](D& d, const V& v) { d.render->timeSeconds = v.number; }),
              "seconds"),
     integer("--width", "W", 1, kMaxImageSide, std::to_string(r.width), G::Sampling,
-            "image width in pixels, {range}", [](D& d, const V& v) { d.render->width = int(v.integer); }),
+            "image width in pixels, {range}; given alone (or with neither), the other side follows the file camera's aspectRatio where it has one", [](D& d, const V& v) {
+              d.render->width = int(v.integer);
+              d.render->widthGiven = true;
+            }),
     integer("--height", "H", 1, kMaxImageSide, std::to_string(r.height), G::Sampling,
-            "image height in pixels, {range}", [](D& d, const V& v) { d.render->height = int(v.integer); }),
+            "image height in pixels, {range}", [](D& d, const V& v) {
+              d.render->height = int(v.integer);
+              d.render->heightGiven = true;
+            }),
     integer("--max-depth", "D", 1, kMaxDepthLimit, std::to_string(r.maxDepth), G::Sampling,
             "longest path, in segments, {range} (default: {default}).\nMitsuba's convention: 1 = only emitters "
             "seen directly, 2 = direct lighting,\n5 = up to four bounces",

@@ -141,6 +141,7 @@ RenderOptions::RenderOptions() {
   OptionDestination to;
   to.render = this;
   applyDefaults(kForRenderAndView, to);
+  widthGiven = heightGiven = false;   // the defaults went through the options' own setters
 }
 
 CompareOptions::CompareOptions() {

@@ -35,6 +35,9 @@ struct CameraOptions {
 // The options of render and view. Constructed with every option at its default: the option
 // table's (session/option_table.cpp), the one place a default is written. Fields without a row
 // default (spp, time, the paths) start unset.
+// The largest --width / --height (and film side the file's aspect ratio may choose).
+constexpr int kMaxImageSide = 16384;
+
 struct RenderOptions {
   RenderOptions();
   std::string scene;             // empty -> default scene (resolved by the caller)
@@ -43,6 +46,8 @@ struct RenderOptions {
   int spp = -1;                  // --spp; -1: not given
   double timeSeconds = -1.0;     // --time; -1: not given; with spp too, stop at whichever comes first
   int width, height;             // --width, --height
+  bool widthGiven = false;       // whether --width / --height were given (else the file camera's
+  bool heightGiven = false;      // aspectRatio may decide the other side: applyFileAspectRatio)
   int maxDepth;                  // --max-depth: Mitsuba convention, >= 1
   std::string method;            // --method: a name of the method table (cms/methods.h)
   std::string backend;           // --backend: vulkan | cpu

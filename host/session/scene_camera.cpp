@@ -1,5 +1,6 @@
 #include "session/scene_camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -100,6 +101,18 @@ Scene loadSceneForRendering(const std::string& scenePath, const RenderOptions& o
     info(scene.name + " has no camera; the default camera frames its bounds from outside (" +
          describe(defaultFraming(scene), target) + "); set one with --look-from, --look-at, --up, --fov");
   return scene;
+}
+
+void applyFileAspectRatio(RenderOptions& o, const Scene& scene) {
+  const double aspect = scene.camera.aspectRatio;
+  if (!(aspect > 0.0) || (o.widthGiven && o.heightGiven)) return;
+  auto side = [&](double v) { return int(std::clamp(std::lround(v), 1l, long(kMaxImageSide))); };
+  const int width = o.width, height = o.height;
+  if (o.heightGiven) o.width = side(o.height * aspect);
+  else o.height = side(o.width / aspect);
+  if (o.width != width || o.height != height)
+    info(scene.name + "'s camera has aspect ratio " + std::to_string(aspect) + ": rendering " + std::to_string(o.width) +
+         "x" + std::to_string(o.height) + " (give both --width and --height to choose another)");
 }
 
 }  // namespace mixtrace

@@ -26,4 +26,10 @@ glm::dvec3 applyCameraOptions(Scene& scene, const CameraOptions& camera);
 // which camera is used (one info line: position, target, up, field of view).
 Scene loadSceneForRendering(const std::string& scenePath, const RenderOptions& o);
 
+// The film's shape from the file camera's aspectRatio (glTF: width / height) where the command line
+// leaves it open: with --width alone the height follows, with --height alone the width, with
+// neither the default width stays and the height follows; with both (or no aspectRatio) nothing
+// changes. Each side stays within [1, kMaxImageSide]. Says so in one info line when it changes a side.
+void applyFileAspectRatio(RenderOptions& o, const Scene& scene);
+
 }  // namespace mixtrace

@@ -14,6 +14,7 @@
 #include "support/stb_image_reader.h"
 
 #include "output/exr_io.h"
+#include "session/options.h"
 #include "support/run_binary.h"
 
 namespace fs = std::filesystem;
@@ -140,4 +141,33 @@ TEST(CommandLineCamera, TheViewerStartsFromIt) {
   for (size_t i = 0; i < size_t(width) * height * 3; ++i) sum += pixels[i];
   stbi_image_free(pixels);
   EXPECT_GT(sum / (double(width) * height * 3), 8.0) << "the viewer did not start from the command line's camera";
+}
+
+// A file camera's aspectRatio (glTF: width / height) decides the film side the command line leaves
+// open (issue 14, point 6): --width alone, --height alone, neither (the default width), both (as
+// given, nothing said).
+TEST(FileCamera, AspectRatioDecidesTheSideTheCommandLineLeavesOpen) {
+  const fs::path dir = scratchDir("aspectratio");
+  std::ifstream in(fs::path(MIXTRACE_SOURCE_DIR) / "scenes" / "cornell_box.gltf");
+  nlohmann::json j = nlohmann::json::parse(in);
+  j["cameras"][0]["perspective"]["aspectRatio"] = 2.0;
+  const fs::path scene = dir / "wide.gltf";
+  writeFile(scene, j.dump());
+  struct Case {
+    std::string size;
+    int width, height;
+  };
+  const RenderOptions defaults;
+  for (const Case& c : {Case{"--width 40", 40, 20}, Case{"--height 15", 30, 15},
+                        Case{"", defaults.width, defaults.width / 2}, Case{"--width 24 --height 18", 24, 18}}) {
+    const fs::path out = dir / ("out" + std::to_string(c.width) + ".exr");
+    const RunResult r = runMixtrace("render --backend cpu --spp 1 --max-depth 1 --no-png " + c.size + " " +
+                                    scene.string() + " --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << c.size << ": " << r.stderrText;
+    const Image image = readExr(out.string());
+    EXPECT_EQ(image.width, c.width) << c.size;
+    EXPECT_EQ(image.height, c.height) << c.size;
+    const bool changed = c.size != "--width 24 --height 18";
+    EXPECT_EQ(r.stderrText.find("aspect ratio 2") != std::string::npos, changed) << c.size << ": " << r.stderrText;
+  }
 }
