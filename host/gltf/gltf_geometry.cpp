@@ -118,14 +118,39 @@ std::vector<uint32_t> readIndices(const LoadContext& ctx, const tinygltf::Primit
   return indices;
 }
 
+// The triangles of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN primitive as a list, three corners
+// each, in the winding the glTF 2.0 specification gives them (3.7.2.1): strip triangle i is
+// {v_i, v_(i+1+i%2), v_(i+2-i%2)}, fan triangle i is {v_(i+1), v_(i+2), v_0}, so every triangle
+// of a strip or fan keeps the front face of its first.
+std::vector<uint32_t> triangleList(int mode, std::vector<uint32_t> indices) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) return indices;
+  std::vector<uint32_t> list;
+  const size_t n = indices.size();
+  if (n < 3) return list;
+  list.reserve(3 * (n - 2));
+  for (size_t i = 0; i + 2 < n; ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      list.insert(list.end(), {indices[i], indices[i + 1 + i % 2], indices[i + 2 - i % 2]});
+    } else {   // TINYGLTF_MODE_TRIANGLE_FAN
+      list.insert(list.end(), {indices[i + 1], indices[i + 2], indices[0]});
+    }
+  }
+  return list;
+}
+
 }  // namespace
+
+bool isSurfaceMode(int mode) {
+  return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
 
 size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex, const glm::dmat4& world,
                        uint32_t material, uint32_t primitiveId, std::vector<Triangle>& out, GeometryStats& stats) {
   const tinygltf::Primitive& primitive = ctx.model.meshes[size_t(meshIndex)].primitives[size_t(primitiveIndex)];
   const std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex);
   const WorldVertices v = transformVertices(ctx, primitive, where, world);
-  const std::vector<uint32_t> indices = readIndices(ctx, primitive, where, v.positions.size());
+  if (!isSurfaceMode(primitive.mode)) ctx.fail(where + " is not made of triangles");   // the caller skips those
+  const std::vector<uint32_t> indices = triangleList(primitive.mode, readIndices(ctx, primitive, where, v.positions.size()));
   stats.leftoverIndices += indices.size() % 3;
 
   // A mirroring transform turns counter-clockwise into clockwise; swapping two vertices keeps the

@@ -147,8 +147,12 @@ struct GeometryStats {
   size_t leftoverIndices = 0; // index/vertex counts not a multiple of 3
 };
 
-// Appends the triangles of primitive `primitiveIndex` of mesh `meshIndex`, placed by `world`,
-// to `out`; returns how many were appended. Winding is reversed under mirroring transforms so the
+// Whether a primitive mode has a surface: TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN (not points or lines).
+bool isSurfaceMode(int mode);
+
+// Appends the triangles of primitive `primitiveIndex` of mesh `meshIndex` (a surface mode; strips
+// and fans are unrolled in the specification's winding), placed by `world`, to `out`; returns how
+// many were appended. Winding is reversed under mirroring transforms so the
 // front face stays counter-clockwise.
 size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex, const glm::dmat4& world,
                        uint32_t material, uint32_t primitiveId, std::vector<Triangle>& out,

@@ -158,10 +158,12 @@ class SceneBuilder {
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const tinygltf::Primitive& primitive = mesh.primitives[p];
       if (!primitive.targets.empty()) morphed_ = true;
-      if (primitive.mode != TINYGLTF_MODE_TRIANGLES) {
+      if (!gltf::isSurfaceMode(primitive.mode)) {
         if (skippedModes_.insert({node.mesh, int(p)}).second) {
           ctx_.warning("mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p) + " has mode " +
-                       std::to_string(primitive.mode) + "; only TRIANGLES (4) is supported, skipping it");
+                       std::to_string(primitive.mode) +
+                       " (points or lines: no surface to render); only TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN "
+                       "(4, 5, 6) are rendered, skipping it");
         }
         continue;
       }

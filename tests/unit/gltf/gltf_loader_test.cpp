@@ -427,6 +427,26 @@ TEST_F(GltfLoaderTest, SkipsNonTriangleModesWithAWarning) {
   EXPECT_NE(warnings.find("mode 1"), std::string::npos) << warnings;
 }
 
+// Strips and fans are unrolled with the specification's winding (3.7.2.1): a strip of four
+// vertices is two triangles, a fan of five is three, and every one faces +Z like its first; with
+// indices and without.
+TEST_F(GltfLoaderTest, UnrollsTriangleStripsAndFansKeepingTheirWinding) {
+  GltfBuilder b;
+  const int strip = b.vec3s({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}});
+  const int fan = b.vec3s({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 1, 0}});
+  const int fanIndices = b.scalars(std::vector<uint16_t>{0, 1, 2, 3, 4}, kUShort);
+  b.scene({b.node({{"mesh", b.mesh(json::array({{{"attributes", {{"POSITION", strip}}}, {"mode", 5}},
+                                                 {{"attributes", {{"POSITION", fan}}}, {"mode", 6}, {"indices", fanIndices}}}))}})});
+  std::string warnings;
+  const Scene scene = loadCapturing(b.writeGltf(dir_), warnings);
+  ASSERT_EQ(scene.triangles.size(), 5u) << warnings;
+  for (const mixtrace::Triangle& t : scene.triangles) expectVec3(faceNormal(t), {0, 0, 1});
+  expectVec3(scene.triangles[1].p[0], {1, 0, 0});   // strip triangle 1 = {v1, v3, v2}
+  expectVec3(scene.triangles[1].p[1], {1, 1, 0});
+  expectVec3(scene.triangles[4].p[2], {0, 0, 0});   // fan triangle 2 = {v3, v4, v0}
+  EXPECT_EQ(warnings.find("mode"), std::string::npos) << warnings;
+}
+
 // --- Materials and textures --------------------------------------------------------------------
 
 TEST_F(GltfLoaderTest, ConvertsMaterialFactorsEmissiveStrengthAndDefaults) {
