@@ -65,7 +65,6 @@ AccessorReader::AccessorReader(const LoadContext& ctx, int accessorIndex, const 
     ctx.fail(role + " refers to accessor " + std::to_string(accessorIndex) + ", which does not exist");
   }
   const tinygltf::Accessor& accessor = model.accessors[size_t(accessorIndex)];
-  if (accessor.sparse.isSparse) ctx.fail(name + " uses sparse storage, which is not supported");
   index_ = accessorIndex;
   componentType_ = accessor.componentType;
   componentSize_ = componentSizeOf(componentType_);
@@ -82,6 +81,7 @@ AccessorReader::AccessorReader(const LoadContext& ctx, int accessorIndex, const 
       ctx.fail(name + " has no bufferView but claims " + std::to_string(count_) + " elements (at most " +
                std::to_string(kMaxDatalessAccessorElements) + " zeros are accepted without data)");
     }
+    if (accessor.sparse.isSparse) applySparse(ctx, accessor, name, elementSize);
     return;
   }
 
@@ -106,6 +106,61 @@ AccessorReader::AccessorReader(const LoadContext& ctx, int accessorIndex, const 
              std::to_string(accessor.bufferView) + " (" + std::to_string(viewLength) + " bytes)");
   }
   data_ = view + accessor.byteOffset;
+  if (accessor.sparse.isSparse) applySparse(ctx, accessor, name, elementSize);
+}
+
+// Sparse storage (glTF 2.0 3.6.2.3): the base elements (read above, or zeros), then `count`
+// substitutions, strictly increasing indices below the accessor's count, their values tightly
+// packed in the accessor's own component type. Applied to a dense copy, which the reader then reads.
+void AccessorReader::applySparse(const LoadContext& ctx, const tinygltf::Accessor& accessor, const std::string& name,
+                                 size_t elementSize) {
+  const auto& sparse = accessor.sparse;
+  if (sparse.count < 1) ctx.fail(name + " has sparse storage with count " + std::to_string(sparse.count) + " (at least 1)");
+  const size_t n = size_t(sparse.count);
+  if (n > count_) {
+    ctx.fail(name + " substitutes " + std::to_string(n) + " sparse elements of its " + std::to_string(count_));
+  }
+  const int indexSize = componentSizeOf(sparse.indices.componentType);
+  if (sparse.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+      sparse.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+      sparse.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+    ctx.fail(name + " has sparse indices of component type " + std::to_string(sparse.indices.componentType) +
+             " (UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT)");
+  }
+  // Each part's bytes: inside its bufferView (checked against its buffer), without overflow.
+  auto partBytes = [&](int viewIndex, int byteOffset, size_t bytesPerElement, const char* part) {
+    size_t length = 0;
+    const unsigned char* view = bufferViewBytes(ctx, viewIndex, length, name + " sparse " + part);
+    if (byteOffset < 0 || size_t(byteOffset) > length || (length - size_t(byteOffset)) / bytesPerElement < n) {
+      ctx.fail(name + " sparse " + part + " need " + std::to_string(n) + " elements of " +
+               std::to_string(bytesPerElement) + " bytes from byte " + std::to_string(byteOffset) + ", past the end of bufferView " +
+               std::to_string(viewIndex) + " (" + std::to_string(length) + " bytes)");
+    }
+    return view + byteOffset;
+  };
+  const unsigned char* indices = partBytes(sparse.indices.bufferView, sparse.indices.byteOffset, size_t(indexSize), "indices");
+  const unsigned char* values = partBytes(sparse.values.bufferView, sparse.values.byteOffset, elementSize, "values");
+
+  auto dense = std::make_shared<std::vector<unsigned char>>(count_ * elementSize, 0);
+  if (data_)
+    for (size_t i = 0; i < count_; ++i) std::memcpy(dense->data() + i * elementSize, element(i), elementSize);
+  uint64_t previous = 0;
+  for (size_t k = 0; k < n; ++k) {
+    uint32_t index = 0;
+    const unsigned char* p = indices + k * size_t(indexSize);
+    if (indexSize == 1) index = p[0];
+    else if (indexSize == 2) { uint16_t v; std::memcpy(&v, p, 2); index = v; }
+    else std::memcpy(&index, p, 4);
+    if (index >= count_ || (k > 0 && index <= previous)) {
+      ctx.fail(name + " sparse index " + std::to_string(index) + " (substitution " + std::to_string(k) +
+               ") is out of range or not increasing");
+    }
+    previous = index;
+    std::memcpy(dense->data() + size_t(index) * elementSize, values + k * elementSize, elementSize);
+  }
+  dense_ = dense;
+  data_ = dense_->data();
+  stride_ = elementSize;
 }
 
 float AccessorReader::component(size_t i, int c) const {

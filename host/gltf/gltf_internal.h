@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -125,8 +126,11 @@ class AccessorReader {
 
  private:
   const unsigned char* element(size_t i) const { return data_ + i * stride_; }
+  void applySparse(const LoadContext& ctx, const tinygltf::Accessor& accessor, const std::string& name,
+                   size_t elementSize);
 
   const unsigned char* data_ = nullptr;  // null: the accessor has no bufferView, all zeros
+  std::shared_ptr<const std::vector<unsigned char>> dense_;   // a sparse accessor's elements (data_ points in)
   size_t stride_ = 0;
   size_t count_ = 0;
   int componentType_ = 0;

@@ -910,20 +910,52 @@ TEST_F(GltfLoaderTest, IndexOutOfRangeOfVerticesIsAnError) {
   EXPECT_NE(message.find("index 3"), std::string::npos) << message;
 }
 
-TEST_F(GltfLoaderTest, SparseAccessorIsRefused) {
+// Sparse storage (glTF 2.0 3.6.2.3, as SimpleSparseAccessor uses it): substitutions over the base
+// elements, or over zeros when the accessor has no bufferView.
+TEST_F(GltfLoaderTest, SparseAccessorsSubstituteTheirElements) {
   GltfBuilder b;
-  const int mesh = b.triangleMesh();
+  const int mesh = b.triangleMesh();   // (0,0,0) (1,0,0) (0,1,0)
   const std::vector<uint8_t> sparseIndex = {1, 0, 0, 0};
-  const std::vector<float> sparseValue = {5, 5, 5};
+  const std::vector<float> sparseValue = {5, 0, 0};
   const int iv = b.view(sparseIndex.data(), sparseIndex.size());
   const int vv = b.view(sparseValue.data(), sparseValue.size() * 4);
   b.doc["accessors"][0]["sparse"] = {{"count", 1},
                                      {"indices", {{"bufferView", iv}, {"componentType", kUByte}}},
                                      {"values", {{"bufferView", vv}}}};
+  // A second primitive from zeros: vertex 1 and 2 substituted (UNSIGNED_SHORT indices, an offset).
+  const std::vector<uint16_t> zeroIndices = {7, 1, 2};   // 7: padding before byteOffset 2
+  const std::vector<glm::vec3> zeroValues = {{0, 0, 1}, {0, 2, 1}};
+  const int ziv = b.view(zeroIndices.data(), zeroIndices.size() * 2);
+  const int zvv = b.view(zeroValues.data(), zeroValues.size() * sizeof(glm::vec3));
+  b.doc["accessors"].push_back({{"componentType", kFloat}, {"count", 3}, {"type", "VEC3"},
+                                {"sparse", {{"count", 2},
+                                            {"indices", {{"bufferView", ziv}, {"byteOffset", 2}, {"componentType", kUShort}}},
+                                            {"values", {{"bufferView", zvv}}}}}});
+  const int zeros = int(b.doc["accessors"].size()) - 1;
+  b.doc["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", zeros}}}});
   b.scene({b.node({{"mesh", mesh}})});
-  const std::string message = loadError(b.writeGltf(dir_));
-  expectOneLine(message);
-  EXPECT_NE(message.find("sparse"), std::string::npos) << message;
+  const Scene scene = mixtrace::loadGltf(b.writeGltf(dir_));
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  expectVec3(scene.triangles[0].p[0], {0, 0, 0});
+  expectVec3(scene.triangles[0].p[1], {5, 0, 0});   // substituted
+  expectVec3(scene.triangles[0].p[2], {0, 1, 0});
+  expectVec3(scene.triangles[1].p[0], {0, 0, 0});   // a zero not substituted
+  expectVec3(scene.triangles[1].p[1], {0, 0, 1});
+  expectVec3(scene.triangles[1].p[2], {0, 2, 1});
+
+  // Indices out of range or not increasing, and values past their view: one-line errors.
+  for (const json& bad : {json{{"count", 2}, {"indices", {{"bufferView", iv}, {"componentType", kUByte}}},
+                               {"values", {{"bufferView", vv}}}},   // values: 2 needed, 1 there
+                          json{{"count", 4}, {"indices", {{"bufferView", iv}, {"componentType", kUByte}}},
+                               {"values", {{"bufferView", zvv}}}},   // more substitutions than elements
+                          json{{"count", 2}, {"indices", {{"bufferView", ziv}, {"componentType", kUShort}}},
+                               {"values", {{"bufferView", zvv}}}}}) {   // index 7 >= 3
+    GltfBuilder c = b;
+    c.doc["accessors"][0]["sparse"] = bad;
+    const std::string message = loadError(c.writeGltf(dir_, "bad.gltf"));
+    expectOneLine(message);
+    EXPECT_NE(message.find("sparse"), std::string::npos) << message;
+  }
 }
 
 TEST_F(GltfLoaderTest, SceneWithoutTrianglesIsAnError) {
