@@ -23,14 +23,44 @@ struct WorldVertices {
   std::vector<glm::vec2> uvs;      // empty: the file has none
 };
 
+// Whether the file declares KHR_mesh_quantization, which allows integer vertex attributes.
+bool quantized(const LoadContext& ctx) {
+  const auto& used = ctx.model.extensionsUsed;
+  return std::find(used.begin(), used.end(), "KHR_mesh_quantization") != used.end();
+}
+
+// The component types an attribute may have: FLOAT always; with KHR_mesh_quantization the
+// extension's integer types (its table: POSITION any of (UNSIGNED_)BYTE/SHORT, normalized or not;
+// NORMAL normalized BYTE or SHORT; TEXCOORD any of them, normalized or not).
+bool positionFormat(const AccessorReader& a, bool quantization) {
+  const int t = a.componentType();
+  if (t == TINYGLTF_COMPONENT_TYPE_FLOAT) return true;
+  return quantization && (t == TINYGLTF_COMPONENT_TYPE_BYTE || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                          t == TINYGLTF_COMPONENT_TYPE_SHORT || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+}
+bool normalFormat(const AccessorReader& a, bool quantization) {
+  const int t = a.componentType();
+  if (t == TINYGLTF_COMPONENT_TYPE_FLOAT) return true;
+  return quantization && a.normalized() && (t == TINYGLTF_COMPONENT_TYPE_BYTE || t == TINYGLTF_COMPONENT_TYPE_SHORT);
+}
+bool texcoordFormat(const AccessorReader& a, bool quantization) {
+  const int t = a.componentType();
+  if (t == TINYGLTF_COMPONENT_TYPE_FLOAT) return true;
+  const bool unsignedNormalized =
+      a.normalized() && (t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  return unsignedNormalized || (quantization && positionFormat(a, true));
+}
+
 WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitive& primitive, const std::string& where,
                                 const glm::dmat4& world) {
   WorldVertices v;
   const int positionAccessor = attributeAccessor(primitive, "POSITION");
   if (positionAccessor < 0) ctx.fail(where + " has no POSITION attribute");
+  const bool quantization = quantized(ctx);
   const AccessorReader positions(ctx, positionAccessor, "POSITION of " + where);
-  if (positions.type() != TINYGLTF_TYPE_VEC3 || positions.componentType() != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-    ctx.fail("POSITION of " + where + " must be a FLOAT VEC3 accessor");
+  if (positions.type() != TINYGLTF_TYPE_VEC3 || !positionFormat(positions, quantization)) {
+    ctx.fail("POSITION of " + where + " must be a FLOAT VEC3 accessor" +
+             (quantization ? " or an integer one (KHR_mesh_quantization)" : " (integers need KHR_mesh_quantization)"));
   }
   const size_t count = positions.count();
   v.positions.resize(count);
@@ -49,8 +79,10 @@ WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitiv
   const int normalAccessor = attributeAccessor(primitive, "NORMAL");
   if (normalAccessor >= 0) {
     const AccessorReader normals(ctx, normalAccessor, "NORMAL of " + where);
-    if (normals.type() != TINYGLTF_TYPE_VEC3 || normals.componentType() != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-      ctx.fail("NORMAL of " + where + " must be a FLOAT VEC3 accessor");
+    if (normals.type() != TINYGLTF_TYPE_VEC3 || !normalFormat(normals, quantization)) {
+      ctx.fail("NORMAL of " + where + " must be a FLOAT VEC3 accessor" +
+               (quantization ? " or a normalized BYTE/SHORT one (KHR_mesh_quantization)"
+                             : " (normalized integers need KHR_mesh_quantization)"));
     }
     if (normals.count() != count) ctx.fail("NORMAL of " + where + " has a different count than POSITION");
     // Normals are covectors: they transform by the inverse transpose to stay perpendicular to
@@ -70,14 +102,10 @@ WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitiv
   const int uvAccessor = attributeAccessor(primitive, "TEXCOORD_0");
   if (uvAccessor >= 0) {
     const AccessorReader uvs(ctx, uvAccessor, "TEXCOORD_0 of " + where);
-    const int type = uvs.componentType();
-    const bool validFormat = uvs.type() == TINYGLTF_TYPE_VEC2 &&
-                             (type == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                              (uvs.normalized() && (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                                    type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+    const bool validFormat = uvs.type() == TINYGLTF_TYPE_VEC2 && texcoordFormat(uvs, quantization);
     if (!validFormat) {
-      ctx.warning("TEXCOORD_0 of " + where +
-                  " is neither FLOAT nor normalized UNSIGNED_BYTE/SHORT VEC2; texture coordinates ignored");
+      ctx.warning("TEXCOORD_0 of " + where + " is neither FLOAT nor normalized UNSIGNED_BYTE/SHORT VEC2" +
+                  (quantization ? " nor a KHR_mesh_quantization integer VEC2" : "") + "; texture coordinates ignored");
     } else {
       if (uvs.count() != count) ctx.fail("TEXCOORD_0 of " + where + " has a different count than POSITION");
       v.uvs.resize(count);

@@ -33,7 +33,8 @@ namespace {
 // The extensions whose meaning the renderer implements; anything else is ignored when optional
 // and refused when required.
 const std::set<std::string>& supportedExtensions() {
-  static const std::set<std::string> kSupported = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+  static const std::set<std::string> kSupported = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
+                                                     "KHR_mesh_quantization"};
   return kSupported;
 }
 

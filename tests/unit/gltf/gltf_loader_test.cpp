@@ -447,6 +447,38 @@ TEST_F(GltfLoaderTest, UnrollsTriangleStripsAndFansKeepingTheirWinding) {
   EXPECT_EQ(warnings.find("mode"), std::string::npos) << warnings;
 }
 
+// KHR_mesh_quantization: SHORT positions (padded to 8-byte elements) dequantized by the node's
+// scale, normalized BYTE normals, normalized SHORT texture coordinates. Without the extension the
+// same file is refused, naming it.
+TEST_F(GltfLoaderTest, ReadsQuantizedAttributesUnderKhrMeshQuantization) {
+  constexpr int kByte = 5120, kShort = 5122;
+  GltfBuilder b;
+  const std::vector<int16_t> positions = {0, 0, 0, 0, 100, 0, 0, 0, 0, 100, 0, 0};
+  const std::vector<int8_t> normals = {0, 0, 127, 0, 0, 0, 127, 0, 0, 0, 127, 0};
+  const std::vector<int16_t> uvs = {0, 0, 32767, 0, 0, -32767};
+  const int p = b.accessor(b.view(positions.data(), positions.size() * 2, 8), kShort, 3, "VEC3");
+  const int n = b.accessor(b.view(normals.data(), normals.size(), 4), kByte, 3, "VEC3", 0, true);
+  const int t = b.accessor(b.view(uvs.data(), uvs.size() * 2), kShort, 3, "VEC2", 0, true);
+  b.scene({b.node({{"mesh", b.mesh(json::array({{{"attributes", {{"POSITION", p}, {"NORMAL", n}, {"TEXCOORD_0", t}}}}}))},
+                   {"scale", {0.01, 0.01, 0.01}}})});
+  const std::string plain = loadError(b.writeGltf(dir_, "plain.gltf"));
+  expectOneLine(plain);
+  EXPECT_NE(plain.find("KHR_mesh_quantization"), std::string::npos) << plain;
+
+  b.doc["extensionsUsed"] = {"KHR_mesh_quantization"};
+  b.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
+  std::string warnings;
+  const Scene scene = loadCapturing(b.writeGltf(dir_), warnings);
+  ASSERT_EQ(scene.triangles.size(), 1u) << warnings;
+  const mixtrace::Triangle& tri = scene.triangles[0];
+  expectVec3(tri.p[1], {1, 0, 0});
+  expectVec3(tri.p[2], {0, 1, 0});
+  for (int k = 0; k < 3; ++k) expectVec3(tri.n[k], {0, 0, 1});
+  EXPECT_NEAR(tri.uv[1].x, 1.0f, 1e-6f);
+  EXPECT_NEAR(tri.uv[2].y, -1.0f, 1e-6f);
+  EXPECT_EQ(warnings.find("KHR_mesh_quantization"), std::string::npos) << "supported, not warned about: " << warnings;
+}
+
 // --- Materials and textures --------------------------------------------------------------------
 
 TEST_F(GltfLoaderTest, ConvertsMaterialFactorsEmissiveStrengthAndDefaults) {
