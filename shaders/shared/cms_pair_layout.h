@@ -68,9 +68,9 @@ SHARED_FN uint remainderTechnique(uint cluster) { return kRemainderTechniqueBit 
 SHARED_FN bool isRemainderTechnique(uint technique) { return (technique & kRemainderTechniqueBit) != 0u; }
 SHARED_FN uint remainderTechniqueCluster(uint technique) { return technique & ~kRemainderTechniqueBit; }
 
-// A triangle technique's pair is claimed only while fewer than this many slots are occupied: the
-// last quarter of the table is kept for remainder pairs, which are claimed only once the table
-// refuses triangle pairs, i.e. when it is otherwise full. A soft bound (invocations that read the
+// A triangle technique's pair is claimed only while fewer than this many slots are occupied, a
+// remainder pair only from then on: the last quarter of the table is kept for remainder pairs, and
+// a table below the limit holds none (so the render need not look for one). A soft bound (invocations that read the
 // count at once may all claim), and never reached by a table sized for its scene
 // (pairTableCapacityFor keeps the load at or below 1/2).
 SHARED_FN uint pairTriangleSlotLimit(uint capacity) { return capacity - capacity / 4u; }

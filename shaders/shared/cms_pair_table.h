@@ -32,6 +32,13 @@
 #include "shared/dialect.h"
 SHARED_BEGIN_WITH_BUFFERS
 
+// Whether the table may hold remainder pairs: only once the triangle pairs reached their limit
+// (findOrInsertPair claims a remainder pair no earlier), and the occupied count never falls. A
+// remainder claimed during this pass still has alpha_R = 0, so a sample that read the count just
+// before loses nothing by not looking it up: the render skips the lookup below the limit exactly
+// (shared/cms_pair_terms.h settlePairSample).
+SHARED_FN bool remaindersMayExist(uint capacity) { return PAIR_OCCUPIED_COUNT() >= pairTriangleSlotLimit(capacity); }
+
 // The slot of (cell, technique) in a table of `capacity` slots (a power of two): found, or claimed
 // when the pair is new; kNoPairSlot when the probe sequence holds no free slot or cell is kNoCell.
 SHARED_FN uint findOrInsertPair(uint capacity, uint cell, uint technique) {
@@ -44,8 +51,9 @@ SHARED_FN uint findOrInsertPair(uint capacity, uint cell, uint technique) {
     uint64_t seen = PAIR_KEY_LOAD(slot);
     if (seen == key) return slot;
     if (seen == uint64_t(0)) {
-      // The last quarter of the table is the remainder pairs' (pairTriangleSlotLimit).
-      if (!isRemainderTechnique(technique) && PAIR_OCCUPIED_COUNT() >= pairTriangleSlotLimit(capacity))
+      // The last quarter of the table is the remainder pairs', and they are claimed only once the
+      // triangle pairs have reached it (pairTriangleSlotLimit, remaindersMayExist).
+      if (isRemainderTechnique(technique) != remaindersMayExist(capacity))
         return kNoPairSlot;
       // Another invocation may claim this slot between the load and the swap: then the swap
       // returns its key, which is ours (the same pair, raced) or another's (probe on).

@@ -83,8 +83,13 @@ SHARED_FN vec3 settlePairSample(uint capacity, uint cell, uint L, uint k, uint s
   uint own = gathers ? findOrInsertPair(capacity, cell, ref.technique) : findPair(capacity, cell, ref.technique);
   vec3 term = vec3(0.0f);
   if (cv) {
-    if (pairSolved(own)) term = pairControlVariateTerm(T, cell, L, own, pt, pB, peff);
-    else term = pairControlVariateTerm(T, cell, L, findPair(capacity, cell, remainderTechnique(k)), pk, pB, peff);
+    if (pairSolved(own)) {
+      term = pairControlVariateTerm(T, cell, L, own, pt, pB, peff);
+    } else {
+      // Below the triangle pairs' limit no remainder exists: the lookup is skipped, not its term.
+      uint remainder = remaindersMayExist(capacity) ? findPair(capacity, cell, remainderTechnique(k)) : kNoPairSlot;
+      term = pairControlVariateTerm(T, cell, L, remainder, pk, pB, peff);
+    }
   }
   if (!gathers) return term;
   if (own != kNoPairSlot) {

@@ -215,6 +215,9 @@ TEST(CmsPairTable, ConsecutiveTechniquesOfACellShareCacheLines) {
 TEST(CmsPairTable, FullTableRefusesNewPairsAndKeepsOldOnes) {
   CpuTable t(16);
   ASSERT_EQ(shared::pairTriangleSlotLimit(16), 12u);
+  EXPECT_EQ(shared::findOrInsertPair(16, 0, shared::remainderTechnique(1)), kNoPairSlot)
+      << "no remainder pair below the triangle pairs' limit";
+  EXPECT_FALSE(shared::remaindersMayExist(16));
   std::vector<uint32_t> slots;
   int refused = 0;
   for (uint32_t i = 0; i < 100; ++i) {
@@ -224,6 +227,7 @@ TEST(CmsPairTable, FullTableRefusesNewPairsAndKeepsOldOnes) {
   }
   EXPECT_EQ(refused, 100 - 12) << "three quarters of the slots are used before a triangle pair is refused";
   EXPECT_EQ(occupied(t.snapshot()), 12u);
+  EXPECT_TRUE(shared::remaindersMayExist(16));
   int remainders = 0;
   for (uint32_t cell = 0; cell < 10; ++cell) remainders += shared::findOrInsertPair(16, cell, shared::remainderTechnique(1)) != kNoPairSlot;
   EXPECT_EQ(remainders, 4) << "remainder pairs take the slots kept for them";
