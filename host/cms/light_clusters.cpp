@@ -17,7 +17,7 @@ constexpr int kBins = 16;
 constexpr int kKeys = 6;  // centroid x, y, z; cone axis x, y, z
 
 // Lights of different classes never start in one group (light_clusters.h).
-enum class LightClass { Area, Local, Directional };
+enum class LightClass { Area, Local, Directional, Environment };
 
 // A cone of directions: axis and half-angle in [0, pi]; theta < 0 is the empty cone.
 struct Cone {
@@ -132,7 +132,10 @@ LightSummary summariseAreaLight(const PreparedScene& scene, const shared::LightG
 
 LightSummary summarisePunctualLight(const shared::LightGpu& light) {
   LightSummary s;
-  if (light.kind == shared::kLightDirectional) {
+  if (light.kind == shared::kLightEnvironment) {
+    s.cls = LightClass::Environment;
+    s.cone = Cone{glm::vec3(0.0f, 0.0f, 1.0f), kPi};
+  } else if (light.kind == shared::kLightDirectional) {
     s.cls = LightClass::Directional;
     s.cone = Cone{glm::normalize(light.direction), 0.0f};
   } else {
@@ -243,28 +246,34 @@ std::pair<Group, Group> splitGroup(const Group& g, const std::vector<LightSummar
 // The starting groups: one per non-empty light class, punctual classes merged when the budget is
 // too small for all of them. Throws when even that does not fit.
 std::vector<Group> initialGroups(const std::vector<LightSummary>& lights, uint32_t maxClusters) {
-  Group area, local, directional;
+  Group area, local, directional, environment;
   area.cls = LightClass::Area;
   local.cls = LightClass::Local;
   directional.cls = LightClass::Directional;
+  environment.cls = LightClass::Environment;
   for (uint32_t i = 0; i < lights.size(); ++i) {
-    Group& g = lights[i].cls == LightClass::Area ? area : lights[i].cls == LightClass::Local ? local : directional;
+    const LightClass c = lights[i].cls;
+    Group& g = c == LightClass::Area ? area : c == LightClass::Local ? local : c == LightClass::Directional ? directional
+                                                                                                            : environment;
     g.lights.push_back(i);
   }
   std::vector<Group> groups;
   for (Group* g : {&area, &local, &directional})
     if (!g->lights.empty()) groups.push_back(std::move(*g));
-  if (groups.size() > maxClusters && groups.size() >= 2 && groups.back().cls == LightClass::Directional &&
-      groups[groups.size() - 2].cls == LightClass::Local) {
+  if (groups.size() + (environment.lights.empty() ? 0 : 1) > maxClusters && groups.size() >= 2 &&
+      groups.back().cls == LightClass::Directional && groups[groups.size() - 2].cls == LightClass::Local) {
     // Budget too small: directional lights join the point/spot lights (both delta techniques).
     Group& merged = groups[groups.size() - 2];
     merged.lights.insert(merged.lights.end(), groups.back().lights.begin(), groups.back().lights.end());
     std::sort(merged.lights.begin(), merged.lights.end());
     groups.pop_back();
   }
+  // The environment is always a cluster of its own (as in the reference implementation).
+  if (!environment.lights.empty()) groups.push_back(std::move(environment));
   if (groups.size() > maxClusters)
     throw Error("maxClusters = " + std::to_string(maxClusters) +
-                " cannot keep the scene's area and punctual lights in separate clusters: use at least 2");
+                " cannot keep the scene's area lights, punctual lights and environment in separate clusters: use at "
+                "least " + std::to_string(groups.size()));
   return groups;
 }
 
@@ -334,7 +343,9 @@ LightClusters buildLightClusters(const PreparedScene& scene, uint32_t maxCluster
     shared::ClusterGpu cluster{};
     cluster.firstLight = uint32_t(out.clusterLights.size());
     cluster.lightCount = uint32_t(members.size());
-    cluster.kind = set.lights[members.front()].kind == shared::kLightArea ? shared::kClusterArea : shared::kClusterDelta;
+    const uint32_t kind = set.lights[members.front()].kind;
+    cluster.kind = kind == shared::kLightArea || kind == shared::kLightEnvironment ? shared::kClusterArea
+                                                                                    : shared::kClusterDelta;
     std::vector<double> power, triangles;
     for (uint32_t i : members) {
       double p = i < set.power.size() ? set.power[i] : 0.0;

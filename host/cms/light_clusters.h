@@ -7,13 +7,14 @@
 //   - every light is in exactly one cluster; a cluster holds either area lights or punctual
 //     (delta) lights, never both, because the estimator measures delta techniques in counting
 //     measure. Directional lights start in a group of their own (they sit at infinity) and share
-//     a cluster with point/spot lights only when the budget leaves no other choice;
+//     a cluster with point/spot lights only when the budget leaves no other choice. The
+//     environment is always a cluster of its own (its technique is the map's distribution);
 //   - with no more lights than maxClusters, every light is its own cluster, and cluster i is
 //     light i;
 //   - otherwise the lights are split top-down (a kd-split, as light-tree builders do), which is
 //     O(n) per split and so O(n * maxClusters) overall: ~milliseconds for 10k lights, where
 //     agglomerative merging would need nearest-neighbour machinery to avoid O(n^2) per merge.
-//     It starts from one group per light class (area, point/spot, directional) and repeatedly
+//     It starts from one group per light class (area, point/spot, directional, environment) and repeatedly
 //     splits the group whose best split lowers the total cost most, until there are maxClusters
 //     groups or no group has two lights. A group's cost is
 //         power * diagonal(bounds)^2 * (2 - cos(normal-cone half-angle))

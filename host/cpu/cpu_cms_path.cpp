@@ -56,13 +56,18 @@ class CmsPath {
       ++counters_.extensionRays;
       HitRecord hit = traceClosest(origin, direction, kFloatMax);
       const bool hitEmitter = hit.triangle != kNoHit && TRIANGLE_SHADING(hit.triangle).emitter >= 0;
-      const vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -direction) : vec3(0.0f);
+      const bool escaped = hit.triangle == kNoHit && hasEnvironmentLight();
+      const vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -direction)
+                                 : escaped ? environmentRadiance(direction) : vec3(0.0f);
       SurfaceHit sh;
       if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
 
       float emissionWeight = 1.0f;
-      if (pending.pdf > 0.0f) emissionWeight = settlePendingBsdfSample(pending, hit, sh, le, origin);
-      if (hit.triangle == kNoHit) break;   // no environment light: the path ends
+      if (pending.pdf > 0.0f) emissionWeight = settlePendingBsdfSample(pending, hit, sh, le, origin, direction);
+      if (hit.triangle == kNoHit) {   // the path ends, with the environment's light if there is one
+        if (escaped) radiance_ += beta * le * (pending.pdf > 0.0f ? emissionWeight : 1.0f);
+        break;
+      }
       if (isBlack(beta)) break;            // continued only to settle the terms above
 
       // Emission reached by this ray (MIS weight against the mixture of the previous vertex).
@@ -90,16 +95,16 @@ class CmsPath {
   // The previous vertex's BSDF sample, now that its hit is known (shade.comp
   // settlePreviousBsdfSample); `from` is that vertex's ray origin. Returns the emission's weight.
   float settlePendingBsdfSample(const PendingBsdfSample& pending, const HitRecord& hit, const SurfaceHit& sh,
-                                vec3 le, vec3 from) {
+                                vec3 le, vec3 from, vec3 direction) {
     float pj;
-    uint j = clusterOfBsdfHit(hit.triangle, le, from, sh.position, pj);
+    uint j = clusterOfBsdfHit(hit.triangle, le, from, sh.position, direction, pj);
     float cj = bsdfHitClusterWeight(pending.cell, L_, j, hit.triangle, from, pending.normal);
     float peff = bsdfSampleMixtureDensity(j, cj, pj, pending.pdf);
     const double w = cells_.statisticsWeight(pending.cell, pending.throughput, ctx_.pixel);
     const bool cv = controlVariate_ && cellSolutionValid(pending.cell, L_);
     if (pairs_ && j != kNoCell) {
       // Per technique: the hit's triangle's technique.
-      radiance_ -= settlePairSample(pairCapacity_, pending.cell, L_, j, techniqueSourceOfHit(hit.triangle), pj,
+      radiance_ -= settlePairSample(pairCapacity_, pending.cell, L_, j, techniqueSourceOfHit(hit.triangle, cells_.emitterCount()), pj,
                                     pending.pdf, peff, le * pending.bsdfCos, w, pending.throughput, cv);
     } else if (pairs_) {
       // No light technique: g = alpha_B p_B alone.

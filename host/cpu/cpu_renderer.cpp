@@ -30,7 +30,16 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
   for (uint32_t depth = 1; depth <= maxDepth; ++depth) {
     ++counters.extensionRays;
     HitRecord hit = traceClosest(origin, direction, kFloatMax);
-    if (hit.triangle == kNoHit) break;
+    if (hit.triangle == kNoHit) {
+      // The environment, weighted against light sampling (a camera ray's is not).
+      if (hasEnvironmentLight()) {
+        float weight = 1.0f;
+        if (previousBsdfPdf > 0.0f)
+          weight = previousBsdfPdf / (previousBsdfPdf + environmentLightPdfAt(origin, previousNormal, direction));
+        radiance += throughput * environmentRadiance(direction) * weight;
+      }
+      break;
+    }
     SurfaceHit sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
 
     if (TRIANGLE_SHADING(hit.triangle).emitter >= 0) {

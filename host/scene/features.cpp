@@ -11,13 +11,15 @@ std::vector<uint32_t> FeatureSet::specialization() const {
   v[SPEC_HAS_PUNCTUAL_LIGHTS] = punctualLights;
   v[SPEC_HAS_METALS] = metals;
   v[SPEC_SINGLE_LIGHT] = singleLight;
+  v[SPEC_HAS_ENVIRONMENT] = environment;
   return v;
 }
 
 std::string FeatureSet::describe() const {
   auto b = [](bool x) { return x ? "1" : "0"; };
   return std::string("textures=") + b(textures) + " area-lights=" + b(areaLights) + " punctual-lights=" +
-         b(punctualLights) + " metals=" + b(metals) + " single-light=" + b(singleLight);
+         b(punctualLights) + " metals=" + b(metals) + " single-light=" + b(singleLight) +
+         " environment=" + b(environment);
 }
 
 FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
@@ -31,6 +33,7 @@ FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
   f.areaLights = lights.hasArea();
   f.punctualLights = lights.hasPunctual();
   f.singleLight = lights.lights.size() == 1;
+  f.environment = lights.environmentLight >= 0;
   return f;
 }
 

@@ -16,6 +16,7 @@ struct FeatureSet {
   bool punctualLights = true;
   bool metals = true;
   bool singleLight = false;
+  bool environment = true;
 
   // Everything on: the fully general pipelines (--general-pipelines).
   static FeatureSet general() { return FeatureSet{}; }

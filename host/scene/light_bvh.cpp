@@ -208,7 +208,9 @@ std::vector<shared::LightBvhNodeGpu> buildLightBvh(const PreparedScene& scene) {
   std::vector<uint32_t> positioned, directional;
   double directionalPower = 0.0, positionedPower = 0.0;
   for (uint32_t i = 0; i < count; ++i) {
-    if (set.lights[i].kind == shared::kLightDirectional) {
+    // Lights at infinity (directional, the environment) have no position: chosen apart.
+    const uint32_t kind = set.lights[i].kind;
+    if (kind == shared::kLightDirectional || kind == shared::kLightEnvironment) {
       directional.push_back(i);
       directionalPower += set.power[i];
     } else {

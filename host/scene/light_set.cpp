@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "scene/environment_distribution.h"
 #include "shared/sampling.h"
 #include "util/log.h"
 
@@ -34,7 +35,9 @@ bool LightSet::hasArea() const {
   return std::any_of(lights.begin(), lights.end(), [](const shared::LightGpu& l) { return l.kind == shared::kLightArea; });
 }
 bool LightSet::hasPunctual() const {
-  return std::any_of(lights.begin(), lights.end(), [](const shared::LightGpu& l) { return l.kind != shared::kLightArea; });
+  return std::any_of(lights.begin(), lights.end(), [](const shared::LightGpu& l) {
+    return l.kind != shared::kLightArea && l.kind != shared::kLightEnvironment;
+  });
 }
 
 double punctualLightPower(const PunctualLight& light, float sceneRadius) {
@@ -114,6 +117,22 @@ LightSet buildLightSet(const Scene& scene, const std::vector<uint32_t>& triangle
     light.spotOffset = -cosOuter * light.spotScale;
     set.lights.push_back(light);
     set.power.push_back(power);
+  }
+
+  // The environment last: one light of its own (its own cluster under CMS, like the reference
+  // implementation's), whose power is what crosses a disk of the scene's radius.
+  if (scene.environment.present()) {
+    const double power = 3.14159265358979323846 * double(sceneRadius) * sceneRadius *
+                         environmentLuminanceIntegral(scene.environment);
+    if (power > 0.0 && std::isfinite(power)) {
+      shared::LightGpu light{};
+      light.kind = shared::kLightEnvironment;
+      set.environmentLight = int32_t(set.lights.size());
+      set.lights.push_back(light);
+      set.power.push_back(power);
+    } else {
+      warn("the environment (" + scene.environment.source + ") is black: it lights nothing");
+    }
   }
 
   if (set.zeroPowerPrimitives > 0)

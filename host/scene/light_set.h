@@ -1,7 +1,7 @@
 #pragma once
 // The lights of a scene as the GPU (and the CPU code) sample them: one light per emissive
-// primitive instance (its triangles are emitters chosen by area * radiance) plus the punctual
-// lights. How a method picks among them is not part of the set (scene/light_selection.h).
+// primitive instance (its triangles are emitters chosen by area * radiance), the punctual
+// lights and, last, the environment. How a method picks among them is not part of the set (scene/light_selection.h).
 #include <cstdint>
 #include <vector>
 
@@ -16,6 +16,7 @@ struct LightSet {
   std::vector<int32_t> triangleEmitter;  // per BVH-order triangle: emitter index or -1
   std::vector<double> power;             // per light: emitted power (luminance, W), for reports
   uint32_t zeroPowerPrimitives = 0;      // emissive primitives dropped for having no area
+  int32_t environmentLight = -1;         // the environment's light (the last one), -1: none
   bool hasArea() const;
   bool hasPunctual() const;
 };

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "scene/environment_distribution.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -20,6 +21,7 @@ PreparedScene prepareScene(Scene scene) {
   p.bvh = buildBvh(cornersOf(scene.triangles));
   p.lights = buildLightSet(scene, p.bvh.triangleOrder);
   p.features = deriveFeatures(scene, p.lights);
+  p.environment = buildEnvironmentBuffer(scene.environment, p.lights.environmentLight);
   if (p.lights.lights.empty()) warn(scene.name + " has no lights: the image will be black");
 
   p.shading.resize(p.bvh.triangleOrder.size());

@@ -22,6 +22,7 @@ struct PreparedScene {
   std::vector<shared::TriangleShading> shading;  // BVH order
   std::vector<shared::TextureGpu> textures;
   std::vector<uint32_t> texels;
+  std::vector<float> environment;  // the ENVIRONMENT buffer (scene/environment_distribution.h)
 };
 
 PreparedScene prepareScene(Scene scene);

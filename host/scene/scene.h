@@ -53,6 +53,17 @@ struct Camera {
                             // file or on the command line (--look-from, ...: session/scene_camera.h)
 };
 
+// An environment light: an equirectangular map of linear radiance around the scene (--env,
+// --env-color; session/scene_environment.h). Direction conventions in shaders/shared/environment.h.
+struct Environment {
+  uint32_t width = 0;               // 0: no environment (escaping rays carry nothing)
+  uint32_t height = 0;
+  std::vector<glm::vec3> radiance;  // width x height, top row (+Y) first, --env-scale applied
+  float rotation = 0.0f;            // radians about +Y (--env-rotate)
+  std::string source;               // the file, or "uniform colour", for messages and the stats
+  bool present() const { return width > 0 && height > 0; }
+};
+
 struct Scene {
   std::string name;                 // file name without directory
   std::vector<Triangle> triangles;
@@ -61,6 +72,7 @@ struct Scene {
   std::vector<PunctualLight> punctualLights;
   Camera camera;
   Bounds bounds;
+  Environment environment;
 };
 
 }  // namespace mixtrace

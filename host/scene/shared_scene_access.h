@@ -27,6 +27,7 @@
 #define TEXEL(i) (SHARED_SCENE.texels[i])
 #define LIGHT(i) (SHARED_SCENE.lights.lights[i])
 #define EMITTER(i) (SHARED_SCENE.lights.emitters[i])
+#define ENV_DATA(i) (SHARED_SCENE.environment[i])
 // How the method picks the scene's lights; a light's cluster and its pmf inside the cluster
 // (docs/estimator.md §2) are read only through these.
 #define LIGHT_SELECT_PMF(i) (SHARED_LIGHT_SELECTION[i].pmf)
@@ -51,6 +52,7 @@
 #define HAS_PUNCTUAL_LIGHTS true
 #define HAS_METALS true
 #define SINGLE_LIGHT false
+#define HAS_ENVIRONMENT true
 
 #include "shared/bvh_traverse.h"
 #include "shared/lights.h"

@@ -85,8 +85,9 @@ OptionRow choice(const char* name, const char* placeholder, const char* noun, st
   return row;
 }
 
-OptionRow vector3(const char* name, std::string help, void (*store)(OptionDestination&, const OptionValue&)) {
-  OptionRow row{name, nullptr, "X,Y,Z", ValueKind::Vector3, kForRenderAndView, OptionGroup::Camera};
+OptionRow vector3(const char* name, std::string help, void (*store)(OptionDestination&, const OptionValue&),
+                  OptionGroup group = OptionGroup::Camera, const char* placeholder = "X,Y,Z") {
+  OptionRow row{name, nullptr, placeholder, ValueKind::Vector3, kForRenderAndView, group};
   row.help = std::move(help);
   row.store = store;
   return row;
@@ -128,6 +129,24 @@ std::vector<OptionRow> inputOutputRows() {
                          "trusted scenes: the buffers and images a scene names may lie anywhere under DIR",
                          [](D& d, const V& v) { d.render->assetRoot = v.text; }),
                     "only under the scene's own folder"),
+
+    // The environment light (session/scene_environment.h)
+    withDefaultNote(text("--env", "FILE|none", kForRenderAndView, G::Input,
+                         "environment light: an equirectangular map of radiance (.exr, .hdr or .pfm; +Y up, "
+                         "the map's centre towards +Z), or none for a black one",
+                         [](D& d, const V& v) { d.render->env = v.text; }),
+                    "none, or a uniform white environment of radiance 1 for a scene without lights"),
+    vector3("--env-color", "a uniform environment of this linear RGB radiance instead of a map (each >= 0)",
+            [](D& d, const V& v) { d.render->envColor = v.vector; }, G::Input, "R,G,B"),
+    withDefault(number("--env-scale", "S", 0.0, kInfinity, false, kForRenderAndView, G::Input,
+                       "multiplies the environment's radiance, {range}",
+                       [](D& d, const V& v) { d.render->envScale = v.number; }),
+                "1"),
+    withUnit(withDefault(number("--env-rotate", "DEGREES", -360.0, 360.0, false, kForRenderAndView, G::Input,
+                                "turns the environment about +Y (right-handed), {range}",
+                                [](D& d, const V& v) { d.render->envRotateDegrees = v.number; }),
+                         "0"),
+             "degrees"),
 
     // Output
     withDefaultNote(text("--out", "FILE", kForRenderAndView, G::Output,

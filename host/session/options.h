@@ -72,6 +72,10 @@ struct RenderOptions {
   bool floatAtomics;             // --float-atomics on|off: CMS statistics with float atomics or CAS loops
   std::string assetRoot;         // --asset-root DIR: external scene files may lie under DIR (default: scene's folder)
   CameraOptions camera;          // --look-from, --look-at, --up, --fov
+  std::string env;               // --env FILE|none; empty: the default (session/scene_environment.h)
+  std::optional<std::array<double, 3>> envColor;   // --env-color R,G,B
+  double envScale;               // --env-scale
+  double envRotateDegrees;       // --env-rotate
 };
 
 // `mixtrace compare`: a statistical test of whether two renders (written with --variance) estimate

@@ -27,12 +27,13 @@ OutputPlan imageOutputs(const std::string& image, const RenderOptions& o) {
   return plan;
 }
 
-void checkFiles(const OutputPlan& plan, const std::string& scenePath) {
+void checkFiles(const OutputPlan& plan, const std::string& scenePath, const std::string& environmentMap) {
   std::vector<NamedFile> outputs = {{"--out", plan.image}};
   if (!plan.preview.empty()) outputs.push_back({"the PNG preview beside --out", plan.preview});
   if (!plan.stats.empty()) outputs.push_back({"--stats", plan.stats});
   std::vector<NamedFile> inputs = {{"the scene", scenePath}};
   for (const std::string& file : filesReferencedByScene(scenePath)) inputs.push_back({"the scene's file", file});
+  if (!environmentMap.empty() && environmentMap != "none") inputs.push_back({"--env", environmentMap});
   checkNoSharedFiles(outputs, inputs);
   for (const NamedFile& output : outputs) checkWritableOutput(output);
 }
@@ -42,12 +43,12 @@ void checkFiles(const OutputPlan& plan, const std::string& scenePath) {
 OutputPlan planRenderOutputs(const RenderOptions& o, const std::string& scenePath) {
   OutputPlan plan = imageOutputs(o.out.empty() ? std::filesystem::path(scenePath).stem().string() + ".exr" : o.out, o);
   plan.stats = o.statsPath;
-  checkFiles(plan, scenePath);
+  checkFiles(plan, scenePath, o.env);
   return plan;
 }
 
 void checkViewerOutputs(const RenderOptions& o, const std::string& scenePath) {
-  if (!o.out.empty()) checkFiles(imageOutputs(o.out, o), scenePath);
+  if (!o.out.empty()) checkFiles(imageOutputs(o.out, o), scenePath, o.env);
 }
 
 }  // namespace mixtrace

@@ -8,6 +8,7 @@
 
 #include "gltf/gltf_loader.h"
 #include "scene/prepared_scene.h"
+#include "session/scene_environment.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -100,6 +101,7 @@ Scene loadSceneForRendering(const std::string& scenePath, const RenderOptions& o
   else if (!fileHasCamera)
     info(scene.name + " has no camera; the default camera frames its bounds from outside (" +
          describe(defaultFraming(scene), target) + "); set one with --look-from, --look-at, --up, --fov");
+  applyEnvironmentOptions(scene, o);
   return scene;
 }
 

@@ -13,7 +13,8 @@ GpuScene::GpuScene(VulkanContext& ctx, const PreparedScene& p, const shared::Cam
       textures(makeBuffer(ctx, p.textures, "texture table")),
       texels(makeBuffer(ctx, p.texels, "texels")),
       lights(makeBuffer(ctx, p.lights.lights, "lights")),
-      emitters(makeBuffer(ctx, p.lights.emitters, "emitters")) {}
+      emitters(makeBuffer(ctx, p.lights.emitters, "emitters")),
+      environment(makeBuffer(ctx, p.environment, "environment map")) {}
 
 void GpuScene::offerTo(BufferBindings& buffers) const {
 #define OFFER_SCENE_BUFFER(ID, name, binding, access, Type, extent, label) buffers[shared::BINDING_##ID] = &name;

@@ -21,6 +21,7 @@ layout(constant_id = SPEC_HAS_AREA_LIGHTS) const bool HAS_AREA_LIGHTS = true;
 layout(constant_id = SPEC_HAS_PUNCTUAL_LIGHTS) const bool HAS_PUNCTUAL_LIGHTS = true;
 layout(constant_id = SPEC_HAS_METALS) const bool HAS_METALS = true;
 layout(constant_id = SPEC_SINGLE_LIGHT) const bool SINGLE_LIGHT = false;
+layout(constant_id = SPEC_HAS_ENVIRONMENT) const bool HAS_ENVIRONMENT = true;
 
 #ifdef PASS_CONSTANTS
 layout(push_constant, scalar) uniform Push { PASS_CONSTANTS pc; };
@@ -67,6 +68,7 @@ PASS_UNREAD_BUFFERS(DECLARE_BUFFER)
 #define TEXEL(i) texels[i]
 #define LIGHT(i) lights[i]
 #define EMITTER(i) emitters[i]
+#define ENV_DATA(i) environment[i]
 // How the method picks the scene's lights (shared/method_buffers.h); a light's cluster and its pmf
 // inside the cluster (docs/estimator.md §2) are read only through these.
 #define LIGHT_SELECT_PMF(i) lightSelection[i].pmf

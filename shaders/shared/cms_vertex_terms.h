@@ -92,23 +92,33 @@ SHARED_FN vec3 lightSampleIntegrand(BsdfParams bsdf, vec3 wo, vec3 wi, LightSamp
 // (balance heuristic, §1).
 SHARED_FN float lightSampleMixtureDensity(float lightPdf, float pB) { return lightPdf + pB; }
 
-// The cluster j of the point a BSDF sample hit on emitting triangle `tri`, seen from `from`, and
-// its p_j; kNoCell (p_j = 0) where the point emits nothing towards `from` (le black: the back of
-// a one-sided emitter counts as no light point at all, for BSDF and light samples alike, §1).
-SHARED_FN uint clusterOfBsdfHit(uint tri, vec3 le, vec3 from, vec3 point, OUT(float) pj) {
+// The light a BSDF sample reached: the emitting triangle's, or the environment's where it escaped
+// (tri = kNoHit; only where le is not black, so the scene has an environment).
+SHARED_FN uint lightOfBsdfHit(uint tri) { return tri == kNoHit ? environmentLight() : lightOfTriangle(tri); }
+
+// The cluster j of the point a BSDF sample along `dir` hit on emitting triangle `tri` (kNoHit: the
+// environment), seen from `from`, and its p_j; kNoCell (p_j = 0) where the point emits nothing
+// towards `from` (le black: the back of a one-sided emitter, a black texel of the environment or
+// no environment at all counts as no light point, for BSDF and light samples alike, §1).
+SHARED_FN uint clusterOfBsdfHit(uint tri, vec3 le, vec3 from, vec3 point, vec3 dir, OUT(float) pj) {
   pj = 0.0f;
   if (isBlack(le)) return kNoCell;
+  if (tri == kNoHit) {
+    uint env = environmentLight();
+    pj = LIGHT_CLUSTER_PMF(env) * environmentPdf(dir);
+    return LIGHT_CLUSTER(env);
+  }
   pj = clusterPointPdf(tri, from, point);
   return LIGHT_CLUSTER(lightOfTriangle(tri));
 }
 
-// The effective c_j of the light of triangle `tri` (of cluster j) for a BSDF sample drawn at a
+// The effective c_j of the light of triangle `tri` (kNoHit: the environment; of cluster j) for a BSDF sample drawn at a
 // vertex of `cell` whose light sample was chosen at (selectFrom, selectNormal): the cell's c_j, or
 // with the BVH defaults vertexClusterWeight (kNoCell j: 0).
 SHARED_FN float bsdfHitClusterWeight(uint cell, uint L, uint j, uint tri, vec3 selectFrom, vec3 selectNormal) {
   if (j == kNoCell) return 0.0f;
   if (!CMS_BVH_DEFAULTS) return clusterSelectPmf(cell, L, j);
-  return vertexClusterWeight(cell, L, lightOfTriangle(tri), selectFrom, selectNormal, defaultsShare(cell, L));
+  return vertexClusterWeight(cell, L, lightOfBsdfHit(tri), selectFrom, selectNormal, defaultsShare(cell, L));
 }
 
 // The mixture density of a BSDF sample of density pB that hit a point of cluster j (kNoCell: no

@@ -6,6 +6,7 @@
 //   - wrap the contents in SHARED_BEGIN / SHARED_END; mark functions SHARED_FN;
 //   - use INOUT(T) / OUT(T) for reference parameters;
 //   - float literals carry the f suffix (C++ would otherwise compute in double);
+//   - atan2(y, x) for the two-argument arctangent (GLSL's atan(y, x));
 //   - only .x .y .z .w component access (no swizzles), no struct constructors (assign fields),
 //     no GLSL-only built-ins (atomics, barriers, textures);
 //   - buffers are reached through macros the includer defines (see lights.h).
@@ -19,7 +20,7 @@
 // Scalar maths resolves to the float overloads of <cmath>; vector arguments find GLM's by ADL.
 #define SHARED_BEGIN namespace mixtrace { namespace shared { using namespace glm; typedef unsigned int uint; \
   using std::sqrt; using std::abs; using std::pow; using std::exp; using std::log; using std::sin; \
-  using std::cos; using std::tan; using std::acos; using std::asin; using std::floor; using std::ceil;
+  using std::cos; using std::tan; using std::acos; using std::asin; using std::floor; using std::ceil; using std::atan2;
 #define SHARED_END } }
 // For headers that read buffers through includer-defined macros (BVH_NODE, LIGHT, ...): internal
 // linkage in C++, so two translation units binding the macros differently never collide (ODR).
@@ -36,6 +37,8 @@
 #define SHARED_FN
 #define INOUT(T) inout T
 #define OUT(T) out T
+// C's two-argument arctangent; GLSL spells it atan(y, x).
+#define atan2(y, x) atan(y, x)
 #endif
 
 #endif

@@ -82,6 +82,9 @@ const uint kLightArea = 0u;
 const uint kLightPoint = 1u;
 const uint kLightSpot = 2u;
 const uint kLightDirectional = 3u;
+// The environment (shared/environment.h): no position, all directions, not a delta light. Its
+// LightGpu carries only its kind; the map and its distribution are the ENVIRONMENT buffer.
+const uint kLightEnvironment = 4u;
 
 // A light: an emissive primitive (its triangles are emitters [firstEmitter, +emitterCount)) or a
 // punctual light. Only what describes the light: how a method picks it is LightSelectionGpu, in a

@@ -3,15 +3,17 @@
 // the tests that check the returned pdf equals the evaluated one.
 //
 // The includer defines the buffer accessors LIGHT(i), EMITTER(i), TRIANGLE(i), TRIANGLE_SHADING(i),
-// MATERIAL(i) (and TEXTURE(i), TEXEL(i) for texture.h), the method's selection distribution
-// LIGHT_SELECT_PMF(i) and LIGHT_SELECT_CDF(i) (LightSelectionGpu), and the feature switches HAS_TEXTURES,
-// HAS_AREA_LIGHTS, HAS_PUNCTUAL_LIGHTS and SINGLE_LIGHT (specialization constants on the GPU), and
+// MATERIAL(i) (and TEXTURE(i), TEXEL(i) for texture.h, ENV_DATA(i) for environment.h), the method's
+// selection distribution LIGHT_SELECT_PMF(i) and LIGHT_SELECT_CDF(i) (LightSelectionGpu), and the
+// feature switches HAS_TEXTURES, HAS_AREA_LIGHTS, HAS_PUNCTUAL_LIGHTS, HAS_ENVIRONMENT and
+// SINGLE_LIGHT (specialization constants on the GPU), and
 // EMITTERS_UNIFORM: true where the method's selection is uniform (kLightSelectUniform), which picks
 // the triangle inside a light uniformly instead of by EmitterGpu.pmf.
 #ifndef MIXTRACE_SHARED_LIGHTS_H
 #define MIXTRACE_SHARED_LIGHTS_H
 #include "shared/constants.h"
 #include "shared/dialect.h"
+#include "shared/environment.h"
 #include "shared/layouts.h"
 #include "shared/ray_offset.h"
 #include "shared/sampling.h"
@@ -26,13 +28,13 @@ SHARED_BEGIN_WITH_BUFFERS
 
 struct LightSample {
   vec3 direction;   // unit, from the shading point towards the light
-  float distance;   // to the light point (kFloatMax for directional lights)
-  vec3 radiance;    // arriving along -direction: Le (area) or intensity / d^2 * falloff (punctual)
+  float distance;   // to the light point (kFloatMax for directional lights and the environment)
+  vec3 radiance;    // arriving along -direction: Le (area, environment) or intensity / d^2 * falloff (punctual)
   float pdf;        // solid-angle pdf including selection (area); selection pmf (delta lights)
   vec3 position;    // the point on the light (area, point, spot)
   uint light;
   vec3 normal;      // geometric normal of the emitter at the point (area)
-  uint triangle;    // emitting triangle (area), kNoHit otherwise
+  uint triangle;    // emitting triangle (area), kNoHit otherwise (punctual lights, the environment)
   vec3 positionError;  // rounding-error bound of `position` (area: ray_offset.h), 0 otherwise
   bool isDelta;
 };
@@ -177,6 +179,15 @@ SHARED_FN float areaLightPdfAt(uint tri, vec3 from, vec3 fromNormal, vec3 lightP
   return pointPdf > 0.0f ? lightSelectPmfAt(from, fromNormal, lightOfTriangle(tri)) * pointPdf : 0.0f;
 }
 
+// The solid-angle pdf with which sampleLightAt (selection at from, fromNormal) produces the
+// environment direction dir: for the MIS weight of a BSDF sample that escaped. 0 without an
+// environment.
+SHARED_FN float environmentLightPdfAt(vec3 from, vec3 fromNormal, vec3 dir) {
+  if (!HAS_ENVIRONMENT || !hasEnvironmentLight()) return 0.0f;
+  float pdf = environmentPdf(dir);
+  return pdf > 0.0f ? lightSelectPmfAt(from, fromNormal, environmentLight()) * pdf : 0.0f;
+}
+
 // glTF's recommended spot falloff: smooth between the outer and inner cone, squared.
 SHARED_FN float spotFalloff(LightGpu l, vec3 lightToPoint) {
   float c = dot(l.direction, lightToPoint);
@@ -192,7 +203,7 @@ SHARED_FN bool sampleLightPoint(vec3 p, uint light, float uEmitter, vec2 uPoint,
   s.light = light;
   LightGpu l = LIGHT(light);
   s.triangle = kNoHit;
-  s.isDelta = l.kind != kLightArea;
+  s.isDelta = l.kind != kLightArea && l.kind != kLightEnvironment;
   s.normal = vec3(0.0f);
   s.positionError = vec3(0.0f);
   s.radiance = vec3(0.0f);
@@ -218,6 +229,12 @@ SHARED_FN bool sampleLightPoint(vec3 p, uint light, float uEmitter, vec2 uPoint,
     s.pdf = emitterPmf(e) * pointPdf;
     s.radiance = emittedRadiance(em.triangle, bary.y, bary.z, -d);
     return !isBlack(s.radiance);
+  }
+  if (HAS_ENVIRONMENT && l.kind == kLightEnvironment) {
+    s.direction = sampleEnvironment(uPoint, s.pdf, s.radiance);
+    s.distance = kFloatMax;
+    s.normal = -s.direction;
+    return s.pdf > 0.0f && !isBlack(s.radiance);
   }
   if (HAS_PUNCTUAL_LIGHTS) {
     s.pdf = 1.0f;

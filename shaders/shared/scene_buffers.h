@@ -15,10 +15,13 @@
 #define BUFFER_TEXELS(X) X(TEXELS, texels, 6, READ_ONLY, uint, UPLOADED, "texels")
 #define BUFFER_LIGHTS(X) X(LIGHTS, lights, 7, READ_ONLY, LightGpu, UPLOADED, "lights")
 #define BUFFER_EMITTERS(X) X(EMITTERS, emitters, 8, READ_ONLY, EmitterGpu, UPLOADED, "emitters")
+// The environment light's map and distribution (shared/environment_layout.h); a header saying
+// "none" where the scene has none.
+#define BUFFER_ENVIRONMENT(X) X(ENVIRONMENT, environment, 48, READ_ONLY, float, UPLOADED, "environment map")
 
 #define SCENE_BUFFERS(X)                                                                             \
   BUFFER_CAMERA(X) BUFFER_BVH_NODES(X) BUFFER_TRIANGLES(X) BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) \
-  BUFFER_TEXTURES(X) BUFFER_TEXELS(X) BUFFER_LIGHTS(X) BUFFER_EMITTERS(X)
+  BUFFER_TEXTURES(X) BUFFER_TEXELS(X) BUFFER_LIGHTS(X) BUFFER_EMITTERS(X) BUFFER_ENVIRONMENT(X)
 // (binding 31: the method's light selection, shared/method_buffers.h.)
 
 SHARED_BEGIN

@@ -53,7 +53,7 @@ float settlePreviousBsdfSample(uint path, HitRecord hit, SurfaceHit sh, vec3 le,
   uint L = pc.clusterCount;
   uint prevCell = cvState[path].cell;
   float pj;
-  uint j = clusterOfBsdfHit(hit.triangle, le, rayOrigin[path], sh.position, pj);
+  uint j = clusterOfBsdfHit(hit.triangle, le, rayOrigin[path], sh.position, rayDirection[path], pj);
   float cj = bsdfHitClusterWeight(prevCell, L, j, hit.triangle, rayOrigin[path], misNormal[path]);
   float peff = bsdfSampleMixtureDensity(j, cj, pj, prevPdfB);
   bool cv = CMS_CONTROL_VARIATE && cellSolutionValid(prevCell, L);
@@ -76,7 +76,7 @@ float settlePreviousBsdfSample(uint path, HitRecord hit, SurfaceHit sh, vec3 le,
     s.pB = prevPdfB;
     s.ck = peff;
     s.flags = kShadowRayBsdfPair;
-    s.source = techniqueSourceOfHit(hit.triangle);
+    s.source = techniqueSourceOfHit(hit.triangle, pc.emitterCount);
     shadowQueue[atomicAdd(queues.shadowCount, 1u)] = s;
     atomicAdd(queues.untracedShadows, 1u);   // a record, not a ray (the stats count rays)
   } else if (CMS_PAIR_TECHNIQUES) {
@@ -90,14 +90,17 @@ float settlePreviousBsdfSample(uint path, HitRecord hit, SurfaceHit sh, vec3 le,
   return balanceWeight(prevPdfB, peff);
 }
 
-// Emission reached by this ray, weighted against light sampling (a camera ray's is not: p_B = 0).
+// Emission reached by this ray (an emitter's, or the environment's where it escaped), weighted
+// against light sampling (a camera ray's is not: p_B = 0).
 void addEmission(uint path, HitRecord hit, SurfaceHit sh, vec3 le, vec3 beta, float prevPdfB, float cmsWeight) {
   float w = 1.0;
   if (prevPdfB > 0.0) {
     if (CMS_SELECTION) {
       w = cmsWeight;
     } else {
-      float lightPdf = areaLightPdfAt(hit.triangle, rayOrigin[path], misNormal[path], sh.position);
+      float lightPdf = hit.triangle == kNoHit
+                           ? environmentLightPdfAt(rayOrigin[path], misNormal[path], rayDirection[path])
+                           : areaLightPdfAt(hit.triangle, rayOrigin[path], misNormal[path], sh.position);
       w = prevPdfB / (prevPdfB + lightPdf);
     }
   }
@@ -233,7 +236,9 @@ void main() {
   vec3 beta = throughput[path];
   float prevPdfB = misPdf[path];   // p_B of the BSDF sample that made this ray; 0 for camera rays
   bool hitEmitter = hit.triangle != kNoHit && HAS_AREA_LIGHTS && triangleShading[hit.triangle].emitter >= 0;
-  vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -dir) : vec3(0.0);
+  bool escaped = hit.triangle == kNoHit && HAS_ENVIRONMENT && hasEnvironmentLight();
+  vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -dir)
+                       : escaped ? environmentRadiance(dir) : vec3(0.0);
   SurfaceHit sh;
   if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, dir);
 
@@ -241,7 +246,10 @@ void main() {
   if (CMS_SELECTION && prevPdfB > 0.0) cmsEmissionWeight = settlePreviousBsdfSample(path, hit, sh, le, prevPdfB);
   // The viewer's cell views show the cell of each pixel's first hit (none where the ray escapes).
   if (CMS_SELECTION && pc.depth == 1u && hit.triangle == kNoHit) firstCell[pc.pixelOffset + path] = kNoCell;
-  if (hit.triangle == kNoHit) return;   // no environment light: the path ends
+  if (hit.triangle == kNoHit) {   // the path ends, with the environment's light if there is one
+    if (escaped) addEmission(path, hit, sh, le, beta, prevPdfB, cmsEmissionWeight);
+    return;
+  }
   if (isBlack(beta)) return;            // continued only to settle the terms above
 
   if (hitEmitter) addEmission(path, hit, sh, le, beta, prevPdfB, cmsEmissionWeight);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "shared/bindings.h"
 #include "shared/layouts.h"
 #include "util/error.h"
 #include "vulkan/context.h"
@@ -15,6 +16,7 @@ namespace mixtrace {
 
 GpuSparseSolver::GpuSparseSolver(VulkanContext& ctx) : ctx_(ctx) {
   for (uint32_t stage = 0; stage < shared::kSparseStageCount; ++stage) {
+    static_assert(SPEC_SPARSE_STAGE >= SPEC_COUNT, "the stage id must follow the renderer's ids");
     std::vector<uint32_t> specialization(SPEC_SPARSE_STAGE + 1, 0u);   // the renderer's ids: unused here
     specialization[SPEC_SPARSE_STAGE] = stage;
     passes_.push_back(std::make_unique<ComputePass>(ctx, "sparse_solve", BINDINGS_OF(SPARSE_SOLVE_BUFFERS),
