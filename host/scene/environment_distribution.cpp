@@ -10,10 +10,14 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double rowSine(uint32_t row, uint32_t height) { return std::sin(kPi * (double(row) + 0.5) / double(height)); }
+// cos(theta_top) - cos(theta_bottom) of a row: its solid angle over 2 pi, exactly (not sin(theta)
+// at the row's centre, which is off by a few per cent near the poles of a small map).
+double rowBand(uint32_t row, uint32_t height) {
+  return std::cos(kPi * double(row) / double(height)) - std::cos(kPi * double(row + 1) / double(height));
+}
 
 double texelWeight(const Environment& env, uint32_t x, uint32_t y) {
-  return double(shared::luminance(env.radiance[size_t(y) * env.width + x])) * rowSine(y, env.height);
+  return double(shared::luminance(env.radiance[size_t(y) * env.width + x])) * rowBand(y, env.height);
 }
 
 // Writes the inclusive CDF of `weights` into out[0 .. n] (0 first, 1 last), in double so a row of
@@ -38,8 +42,8 @@ double environmentLuminanceIntegral(const Environment& env) {
   double sum = 0.0;
   for (uint32_t y = 0; y < env.height; ++y)
     for (uint32_t x = 0; x < env.width; ++x) sum += texelWeight(env, x, y);
-  // Each texel spans (2 pi / W) x (pi / H) of (phi, theta); sin(theta) is in the weight.
-  return sum * (2.0 * kPi / env.width) * (kPi / env.height);
+  // Each texel spans 2 pi / W of phi; its row's band of cos(theta) is in the weight.
+  return sum * (2.0 * kPi / env.width);
 }
 
 std::vector<float> buildEnvironmentBuffer(const Environment& env, int32_t light) {

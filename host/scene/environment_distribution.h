@@ -1,7 +1,7 @@
 #pragma once
 // The environment light as the shaders read it: the one float buffer of
 // shared/environment_layout.h, with the piecewise-constant distribution that
-// shared/environment.h samples (each texel weighted by luminance x sin(theta) at its row's centre).
+// shared/environment.h samples (each texel weighted by luminance x its solid angle).
 #include <cstdint>
 #include <vector>
 

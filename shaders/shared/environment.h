@@ -1,6 +1,6 @@
 // The environment light: radiance from an equirectangular map at infinity, sampled by a
-// piecewise-constant distribution over its texels (each weighted by luminance x sin(theta) of
-// its row's centre, so that the density in solid angle follows the radiance), with exact pdfs.
+// piecewise-constant distribution over its texels (each weighted by its luminance x its solid
+// angle, so that a texel is drawn as often as it contributes), with exact pdfs.
 // One source for the GPU shade pass, the CPU code and the tests.
 //
 // Map convention (Mitsuba 3's envmap, so that the two renderers agree on the same file): +Y is
@@ -8,8 +8,9 @@
 // v = acos(m.y) / pi, v = 0 the top row. So -Z is the map's left edge (u = 0), +X is u = 1/4 and
 // +Z the centre column. --env-rotate R turns the environment by R about +Y (right-handed):
 // map space is world space rotated by -R. Radiance is the nearest texel's: piecewise constant,
-// as the distribution is, so the distribution is exactly proportional to luminance x sin(theta)
-// within each row.
+// as the distribution is. Inside a texel the sample is uniform in (u, v), so its solid-angle
+// density varies as 1 / sin(theta) (and grows without bound at the poles, where the texels
+// shrink to points: the pdf stays exact, and integrable).
 //
 // The includer defines ENV_DATA(i) -> float (the ENVIRONMENT buffer, shared/environment_layout.h).
 #ifndef MIXTRACE_SHARED_ENVIRONMENT_H

@@ -1,4 +1,5 @@
-// A render with cms of a scene without lights says so, and not that its lights form one cluster
+// A render with cms of a scene without lights (--env none: no default environment) says so, and
+// not that its lights form one cluster
 // (the note itself: tests/unit/cms/cms_setup_test.cpp).
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -22,7 +23,7 @@ TEST(CmsSetup, RenderOfASceneWithoutLightsSaysSo) {
   const auto dir = testing::scratchDir("cms-no-lights");
   testing::writeFile(dir / "dark.gltf", gltf.dump());
   const testing::RunResult r = testing::runMixtrace("render " + (dir / "dark.gltf").string() +
-                                                    " --method cms --spp 1 --width 8 --height 8 --no-png --out " +
+                                                    " --method cms --env none --spp 1 --width 8 --height 8 --no-png --out " +
                                                     (dir / "dark.exr").string());
   EXPECT_EQ(r.exitCode, 0) << r.stderrText;
   EXPECT_NE(r.stderrText.find("cms: the scene has no lights"), std::string::npos) << r.stderrText;

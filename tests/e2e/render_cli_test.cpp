@@ -124,7 +124,8 @@ TEST(BadInput, ImageTooLargeForMemory) {
 TEST(BadInput, UnknownOption) { expectOneErrorLine(runMixtrace("render --bogus 3"), "--bogus"); }
 
 TEST(NoLights, RendersBlackWithWarning) {
-  // One non-emissive triangle in front of the default camera framing.
+  // One non-emissive triangle in front of the default camera framing, with --env none (without
+  // it a scene without lights gets a white environment: environment_render_test).
   fs::path dir = scratchDir("nolights");
   std::string positions = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";  // (0,0,0) (1,0,0) (0,1,0)
   writeFile(dir / "dark.gltf", R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
@@ -132,7 +133,7 @@ TEST(NoLights, RendersBlackWithWarning) {
     "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
     "bufferViews":[{"buffer":0,"byteLength":36}],
     "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" + positions + R"("}]})");
-  RunResult r = runMixtrace("render " + (dir / "dark.gltf").string() + " --width 16 --height 16 --spp 1 --no-png --out " +
+  RunResult r = runMixtrace("render " + (dir / "dark.gltf").string() + " --env none --width 16 --height 16 --spp 1 --no-png --out " +
                             (dir / "dark.exr").string());
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
   EXPECT_NE(r.stderrText.find("no lights"), std::string::npos) << r.stderrText;

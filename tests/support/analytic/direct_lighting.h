@@ -35,24 +35,54 @@ inline std::vector<EmitterPoint> emitterNodes(const std::vector<Tri>& tris, glm:
 
 // Radiance leaving x (surface normal n, any orientation: the BRDF is two-sided, so the side the
 // viewer is on counts) towards the unit direction `toViewer`.
+// The BRDF at x (normal n, seen from toViewer) as a function of the world direction wi: any
+// tangent frame does, the BRDF is isotropic.
+struct LocalBsdf {
+  const shared::BsdfParams& m;
+  glm::dvec3 n, t, b;
+  glm::vec3 wo;
+  LocalBsdf(const shared::BsdfParams& params, glm::dvec3 normal, glm::dvec3 toViewer) : m(params), n(normal) {
+    if (glm::dot(n, toViewer) < 0.0) n = -n;
+    const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
+    t = glm::normalize(glm::cross(helper, n));
+    b = glm::cross(n, t);
+    wo = local(toViewer);
+  }
+  glm::vec3 local(glm::dvec3 v) const {
+    return glm::vec3(float(glm::dot(v, t)), float(glm::dot(v, b)), float(glm::dot(v, n)));
+  }
+  glm::dvec3 eval(glm::dvec3 wi) const { return glm::dvec3(shared::bsdfEval(m, wo, local(wi))); }
+};
+
 inline glm::dvec3 directRadiance(const shared::BsdfParams& m, glm::dvec3 x, glm::dvec3 n, glm::dvec3 toViewer,
                                  const std::vector<EmitterPoint>& emitters) {
-  if (glm::dot(n, toViewer) < 0.0) n = -n;
-  // Any tangent frame does: the BRDF is isotropic.
-  const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
-  const glm::dvec3 t = glm::normalize(glm::cross(helper, n));
-  const glm::dvec3 b = glm::cross(n, t);
-  auto local = [&](glm::dvec3 v) { return glm::vec3(float(glm::dot(v, t)), float(glm::dot(v, b)), float(glm::dot(v, n))); };
-  const glm::vec3 wo = local(toViewer);
+  const LocalBsdf f(m, n, toViewer);
   glm::dvec3 sum(0.0);
   for (const EmitterPoint& e : emitters) {
     const glm::dvec3 d = e.position - x;
     const double dist2 = glm::dot(d, d);
     const glm::dvec3 wi = d / std::sqrt(dist2);
-    const double cosX = glm::dot(wi, n);
+    const double cosX = glm::dot(wi, f.n);
     const double cosL = -glm::dot(wi, e.normal);
     if (cosX <= 0.0 || cosL <= 0.0) continue;
-    sum += glm::dvec3(shared::bsdfEval(m, wo, local(wi))) * e.weightedLe * (cosX * cosL / dist2);
+    sum += f.eval(wi) * e.weightedLe * (cosX * cosL / dist2);
+  }
+  return sum;
+}
+
+// Light from infinitely far away (an environment): quadrature nodes over directions.
+struct DirectionNode {
+  glm::dvec3 direction;   // unit, towards the light
+  glm::dvec3 weightedLe;  // Le times the solid-angle weight of the node
+};
+
+inline glm::dvec3 directRadianceFromDirections(const shared::BsdfParams& m, glm::dvec3 n, glm::dvec3 toViewer,
+                                               const std::vector<DirectionNode>& nodes) {
+  const LocalBsdf f(m, n, toViewer);
+  glm::dvec3 sum(0.0);
+  for (const DirectionNode& d : nodes) {
+    const double cosX = glm::dot(d.direction, f.n);
+    if (cosX > 0.0) sum += f.eval(d.direction) * d.weightedLe * cosX;
   }
   return sum;
 }

@@ -28,11 +28,12 @@ struct LabelledScene {
 };
 
 // radiance(surface, hit, ray): the radiance arriving at the camera along `ray`, which first hits
-// `hit` on `surface`; surface -1 (the ray leaves the scene) contributes 0 without a call.
+// `hit` on `surface`; surface -1 (the ray leaves the scene) contributes `background` (a uniform
+// environment's radiance; 0 without one) without a call.
 using RadianceFn = std::function<glm::dvec3(int surface, const Hit& hit, const Ray& ray)>;
 
 inline Expectation pixelExpectation(const CameraSpec& camera, int width, int height, const LabelledScene& scene,
-                                    const RadianceFn& radiance) {
+                                    const RadianceFn& radiance, glm::dvec3 background = glm::dvec3(0.0)) {
   Expectation e(width, height);
   constexpr int kProbe = 5;  // probe grid per pixel side, corners included, to find edges
   const double g = 0.5 / std::sqrt(3.0);
@@ -53,7 +54,7 @@ inline Expectation pixelExpectation(const CameraSpec& camera, int width, int hei
         e.tested[p] = 0;
         continue;
       }
-      glm::dvec3 sum(0.0);
+      glm::dvec3 sum = label == -1 ? background : glm::dvec3(0.0);
       if (label >= 0) {
         for (double oy : {0.5 - g, 0.5 + g})
           for (double ox : {0.5 - g, 0.5 + g}) {
