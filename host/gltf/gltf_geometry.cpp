@@ -52,7 +52,7 @@ bool texcoordFormat(const AccessorReader& a, bool quantization) {
 }
 
 WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitive& primitive, const std::string& where,
-                                const glm::dmat4& world) {
+                                const glm::dmat4& world, const UvMapping& uvMapping) {
   WorldVertices v;
   const int positionAccessor = attributeAccessor(primitive, "POSITION");
   if (positionAccessor < 0) ctx.fail(where + " has no POSITION attribute");
@@ -99,18 +99,21 @@ WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitiv
 
   if (attributeAccessor(primitive, "COLOR_0") >= 0)
     ctx.ignoring("COLOR_0", "vertex colours are not implemented; the base colour is used alone");
-  const int uvAccessor = attributeAccessor(primitive, "TEXCOORD_0");
+  const std::string uvName = "TEXCOORD_" + std::to_string(uvMapping.set);
+  const int uvAccessor = attributeAccessor(primitive, uvName.c_str());
+  if (uvAccessor < 0 && uvMapping.set != 0 && attributeAccessor(primitive, "TEXCOORD_0") >= 0)
+    ctx.warning(where + " has no " + uvName + ", which its material's textures read; they get (0, 0)");
   if (uvAccessor >= 0) {
-    const AccessorReader uvs(ctx, uvAccessor, "TEXCOORD_0 of " + where);
+    const AccessorReader uvs(ctx, uvAccessor, uvName + " of " + where);
     const bool validFormat = uvs.type() == TINYGLTF_TYPE_VEC2 && texcoordFormat(uvs, quantization);
     if (!validFormat) {
-      ctx.warning("TEXCOORD_0 of " + where + " is neither FLOAT nor normalized UNSIGNED_BYTE/SHORT VEC2" +
+      ctx.warning(uvName + " of " + where + " is neither FLOAT nor normalized UNSIGNED_BYTE/SHORT VEC2" +
                   (quantization ? " nor a KHR_mesh_quantization integer VEC2" : "") + "; texture coordinates ignored");
     } else {
-      if (uvs.count() != count) ctx.fail("TEXCOORD_0 of " + where + " has a different count than POSITION");
+      if (uvs.count() != count) ctx.fail(uvName + " of " + where + " has a different count than POSITION");
       v.uvs.resize(count);
       for (size_t i = 0; i < count; ++i) {
-        const glm::vec2 uv = uvs.vec2(i);
+        const glm::vec2 uv = uvMapping.apply(uvs.vec2(i));
         v.uvs[i] = (std::isfinite(uv.x) && std::isfinite(uv.y)) ? uv : glm::vec2(0.0f);
       }
     }
@@ -168,15 +171,23 @@ std::vector<uint32_t> triangleList(int mode, std::vector<uint32_t> indices) {
 
 }  // namespace
 
+glm::vec2 UvMapping::apply(glm::vec2 uv) const {
+  if (identity()) return uv;
+  const glm::dvec2 s = scale * glm::dvec2(uv);
+  const double c = std::cos(rotation), n = std::sin(rotation);
+  return glm::vec2(offset + glm::dvec2(c * s.x + n * s.y, -n * s.x + c * s.y));
+}
+
 bool isSurfaceMode(int mode) {
   return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
 }
 
 size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex, const glm::dmat4& world,
-                       uint32_t material, uint32_t primitiveId, std::vector<Triangle>& out, GeometryStats& stats) {
+                       uint32_t material, const UvMapping& uvMapping, uint32_t primitiveId, std::vector<Triangle>& out,
+                       GeometryStats& stats) {
   const tinygltf::Primitive& primitive = ctx.model.meshes[size_t(meshIndex)].primitives[size_t(primitiveIndex)];
   const std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex);
-  const WorldVertices v = transformVertices(ctx, primitive, where, world);
+  const WorldVertices v = transformVertices(ctx, primitive, where, world, uvMapping);
   if (!isSurfaceMode(primitive.mode)) ctx.fail(where + " is not made of triangles");   // the caller skips those
   const std::vector<uint32_t> indices = triangleList(primitive.mode, readIndices(ctx, primitive, where, v.positions.size()));
   stats.leftoverIndices += indices.size() % 3;

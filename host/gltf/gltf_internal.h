@@ -158,8 +158,26 @@ bool isSurfaceMode(int mode);
 // and fans are unrolled in the specification's winding), placed by `world`, to `out`; returns how
 // many were appended. Winding is reversed under mirroring transforms so the
 // front face stays counter-clockwise.
+// Which texture coordinates a material's textures read, and how they are transformed
+// (KHR_texture_transform: uv' = offset + R(rotation) (scale * uv), R turning the UVs
+// counter-clockwise, u' = cos u + sin v, v' = -sin u + cos v, as the extension's examples read).
+// The triangles carry one set of UVs, so the mapping is applied to them at load time: exact
+// where a material's textures agree (exporters write one transform per material), else the base
+// colour texture's serves all, with a warning.
+struct UvMapping {
+  int set = 0;                                  // TEXCOORD_<set>
+  glm::dvec2 offset{0.0};
+  double rotation = 0.0;
+  glm::dvec2 scale{1.0};
+  bool identity() const { return offset == glm::dvec2(0.0) && rotation == 0.0 && scale == glm::dvec2(1.0); }
+  glm::vec2 apply(glm::vec2 uv) const;
+  bool operator==(const UvMapping& o) const {
+    return set == o.set && offset == o.offset && rotation == o.rotation && scale == o.scale;
+  }
+};
+
 size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex, const glm::dmat4& world,
-                       uint32_t material, uint32_t primitiveId, std::vector<Triangle>& out,
+                       uint32_t material, const UvMapping& uvMapping, uint32_t primitiveId, std::vector<Triangle>& out,
                        GeometryStats& stats);
 
 // --- gltf_materials.cpp: glTF materials and textures -> MaterialGpu and Texture, on demand.
@@ -169,6 +187,9 @@ class MaterialTable {
   // Index into scene.materials for glTF material `gltfMaterial` (-1: the spec's default
   // material); converts it (and its textures) the first time it is asked for.
   uint32_t materialFor(int gltfMaterial);
+  // The texture coordinates glTF material `gltfMaterial` reads (set 0, untransformed, for the
+  // default material and for a material without textures).
+  UvMapping uvMappingFor(int gltfMaterial);
 
  private:
   int textureFor(const tinygltf::TextureInfo& info, int materialIndex, const char* slot);
@@ -182,6 +203,8 @@ class MaterialTable {
   std::vector<int> materialSlots_;  // glTF material -> scene material, -1 until converted
   int defaultMaterial_ = -1;
   std::vector<int> textureSlots_;   // glTF texture -> scene texture; -1 not yet, -2 unusable
+  std::vector<int> uvMappingDone_;  // per glTF material: its UvMapping is in uvMappings_
+  std::vector<UvMapping> uvMappings_;
 };
 
 // --- gltf_textures.cpp

@@ -47,13 +47,81 @@ MaterialGpu defaultMaterial() {
   return m;
 }
 
+// The texture coordinates one texture reference reads: its texCoord, and its KHR_texture_transform
+// (whose own texCoord overrides the reference's). Values that are not finite numbers are the
+// extension's defaults, with a warning.
+UvMapping uvMappingOf(const LoadContext& ctx, const tinygltf::TextureInfo& info, const std::string& where) {
+  UvMapping m;
+  m.set = std::max(info.texCoord, 0);
+  const auto it = info.extensions.find("KHR_texture_transform");
+  if (it == info.extensions.end() || !it->second.IsObject()) return m;
+  const tinygltf::Value& t = it->second;
+  bool invalid = false;
+  auto number = [&](const tinygltf::Value& v, double fallback) {
+    if (!v.IsNumber()) return fallback;
+    const double x = v.GetNumberAsDouble();
+    if (std::isfinite(x) && std::abs(x) < 1e30) return x;
+    invalid = true;
+    return fallback;
+  };
+  auto pair = [&](const char* name, glm::dvec2 fallback) {
+    const tinygltf::Value& v = t.Get(name);
+    if (!v.IsArray()) return fallback;
+    if (v.ArrayLen() != 2) {
+      invalid = true;
+      return fallback;
+    }
+    return glm::dvec2(number(v.Get(0), fallback.x), number(v.Get(1), fallback.y));
+  };
+  m.offset = pair("offset", glm::dvec2(0.0));
+  m.scale = pair("scale", glm::dvec2(1.0));
+  m.rotation = number(t.Get("rotation"), 0.0);
+  const tinygltf::Value& texCoord = t.Get("texCoord");
+  if (texCoord.IsInt() && texCoord.GetNumberAsInt() >= 0) m.set = texCoord.GetNumberAsInt();
+  if (invalid) ctx.warning(where + " has a KHR_texture_transform value that is not a usable number; its default is used");
+  return m;
+}
+
 }  // namespace
 
 MaterialTable::MaterialTable(const LoadContext& ctx, Scene& scene)
     : ctx_(ctx),
       scene_(scene),
       materialSlots_(ctx.model.materials.size(), -1),
-      textureSlots_(ctx.model.textures.size(), -1) {}
+      textureSlots_(ctx.model.textures.size(), -1),
+      uvMappingDone_(ctx.model.materials.size(), 0),
+      uvMappings_(ctx.model.materials.size()) {}
+
+UvMapping MaterialTable::uvMappingFor(int gltfMaterial) {
+  if (gltfMaterial < 0 || size_t(gltfMaterial) >= uvMappings_.size()) return UvMapping{};
+  if (uvMappingDone_[size_t(gltfMaterial)]) return uvMappings_[size_t(gltfMaterial)];
+  const tinygltf::Material& src = ctx_.model.materials[size_t(gltfMaterial)];
+  const std::string where = "material " + std::to_string(gltfMaterial);
+  // The textures the renderer reads, the base colour's first: it serves all where they disagree.
+  const std::pair<const tinygltf::TextureInfo*, const char*> textures[] = {
+      {&src.pbrMetallicRoughness.baseColorTexture, "baseColorTexture"},
+      {&src.pbrMetallicRoughness.metallicRoughnessTexture, "metallicRoughnessTexture"},
+      {&src.emissiveTexture, "emissiveTexture"}};
+  UvMapping chosen;
+  const char* chosenSlot = nullptr;
+  for (const auto& [info, slot] : textures) {
+    if (info->index < 0) continue;
+    const UvMapping m = uvMappingOf(ctx_, *info, where + " " + slot);
+    if (!chosenSlot) {
+      chosen = m;
+      chosenSlot = slot;
+    } else if (!(m == chosen)) {
+      auto describe = [](const UvMapping& u) {
+        return "TEXCOORD_" + std::to_string(u.set) + (u.identity() ? "" : " through a KHR_texture_transform");
+      };
+      ctx_.warning(where + "'s " + slot + " reads " + describe(m) + ", its " + chosenSlot + " " + describe(chosen) +
+                   "; the triangles carry one set of coordinates, so the " + chosenSlot + "'s serves both");
+    }
+  }
+  uvMappingDone_[size_t(gltfMaterial)] = 1;
+  uvMappings_[size_t(gltfMaterial)] = chosen;
+  return chosen;
+}
 
 uint32_t MaterialTable::materialFor(int gltfMaterial) {
   if (gltfMaterial < 0) {
@@ -110,10 +178,6 @@ int MaterialTable::textureFor(const tinygltf::TextureInfo& info, int materialInd
   const std::string where = "material " + std::to_string(materialIndex) + " " + slot;
   if (size_t(info.index) >= textureSlots_.size()) {
     ctx_.fail(where + " refers to texture " + std::to_string(info.index) + ", which does not exist");
-  }
-  if (info.texCoord != 0) {
-    ctx_.warning(where + " uses TEXCOORD_" + std::to_string(info.texCoord) +
-                 "; only TEXCOORD_0 is supported, using it");
   }
   int& slotIndex = textureSlots_[size_t(info.index)];
   if (slotIndex == -1) {

@@ -34,7 +34,7 @@ namespace {
 // and refused when required.
 const std::set<std::string>& supportedExtensions() {
   static const std::set<std::string> kSupported = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                                     "KHR_mesh_quantization"};
+                                                     "KHR_mesh_quantization", "KHR_texture_transform"};
   return kSupported;
 }
 

@@ -838,12 +838,12 @@ TEST_F(GltfLoaderTest, NamesEachIgnoredPropertyOnce) {
 
 TEST_F(GltfLoaderTest, WarnsAboutOptionalUnsupportedExtensionAndLoads) {
   GltfBuilder b;
-  b.doc["extensionsUsed"] = {"KHR_texture_transform", "KHR_lights_punctual"};
+  b.doc["extensionsUsed"] = {"KHR_materials_clearcoat", "KHR_lights_punctual"};
   b.scene({b.node({{"mesh", b.triangleMesh()}})});
   std::string warnings;
   const Scene scene = loadCapturing(b.writeGltf(dir_), warnings);
   EXPECT_EQ(scene.triangles.size(), 1u);
-  EXPECT_NE(warnings.find("KHR_texture_transform"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("KHR_materials_clearcoat"), std::string::npos) << warnings;
   EXPECT_EQ(warnings.find("KHR_lights_punctual"), std::string::npos) << warnings;
 }
 
@@ -1076,6 +1076,60 @@ TEST_F(GltfLoaderTest, AccessorWithoutBufferViewIsBoundedByTheDatalessLimit) {
       EXPECT_NE(message.find("has no bufferView but claims 2097152 elements"), std::string::npos) << message;
     }
   }
+}
+
+// Each material's textures read its TEXCOORD set (texCoord, or the KHR_texture_transform's own,
+// which overrides it) through its transform: uv' = offset + R (scale uv), R turning the UVs
+// counter-clockwise (the extension's example: offset (0, 1), rotation pi/2, scale 0.5 reads the
+// lower-left quadrant turned clockwise). Textures of one material that disagree are said.
+TEST_F(GltfLoaderTest, MaterialsReadTheirTexCoordSetThroughTheirTextureTransform) {
+  GltfBuilder b;
+  const int pos = b.vec3s({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  const int uv0 = b.vec2s({{0, 0}, {1, 0}, {0, 1}});
+  const int uv1 = b.vec2s({{0.25f, 0.5f}, {0.75f, 0.5f}, {0.25f, 1.0f}});
+  const std::vector<uint8_t> png = encodePng(1, 1, 3, {10, 20, 30});
+  b.doc["images"] = json::array({{{"bufferView", b.view(png.data(), png.size())}, {"mimeType", "image/png"}}});
+  b.doc["textures"] = json::array({{{"source", 0}}});
+  auto transform = [](const json& t) { return json{{"KHR_texture_transform", t}}; };
+  auto baseColor = [](const json& info) { return json{{"pbrMetallicRoughness", {{"baseColorTexture", info}}}}; };
+  b.doc["materials"] = json::array({
+      baseColor({{"index", 0}, {"texCoord", 1}}),
+      baseColor({{"index", 0},
+                 {"extensions", transform({{"offset", {0, 1}}, {"rotation", 1.5707963267948966}, {"scale", {0.5, 0.5}}})}}),
+      baseColor({{"index", 0}, {"texCoord", 0}, {"extensions", transform({{"texCoord", 1}, {"offset", {0.5, 0}}})}}),
+      {{"pbrMetallicRoughness",
+        {{"baseColorTexture", {{"index", 0}, {"extensions", transform({{"scale", {2, 2}}})}}},
+         {"metallicRoughnessTexture", {{"index", 0}}}}}},
+  });
+  b.doc["extensionsUsed"] = {"KHR_texture_transform"};
+  json primitives = json::array();
+  for (int m = 0; m < 4; ++m)
+    primitives.push_back({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv0}, {"TEXCOORD_1", uv1}}}, {"material", m}});
+  b.scene({b.node({{"mesh", b.mesh(primitives)}})});
+  std::string warnings;
+  const Scene scene = loadCapturing(b.writeGltf(dir_), warnings);
+  ASSERT_EQ(scene.triangles.size(), 4u);
+  const glm::vec2 expected[4][3] = {
+      {{0.25f, 0.5f}, {0.75f, 0.5f}, {0.25f, 1.0f}},  // TEXCOORD_1
+      {{0.0f, 1.0f}, {0.0f, 0.5f}, {0.5f, 1.0f}},     // the lower-left quadrant, turned
+      {{0.75f, 0.5f}, {1.25f, 0.5f}, {0.75f, 1.0f}},  // the extension's texCoord 1, offset
+      {{0.0f, 0.0f}, {2.0f, 0.0f}, {0.0f, 2.0f}},     // the base colour's scale serves both
+  };
+  for (int m = 0; m < 4; ++m)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(scene.triangles[size_t(m)].uv[k].x, expected[m][k].x, 1e-6f) << "material " << m << " corner " << k;
+      EXPECT_NEAR(scene.triangles[size_t(m)].uv[k].y, expected[m][k].y, 1e-6f) << "material " << m << " corner " << k;
+    }
+  EXPECT_NE(warnings.find("material 3's metallicRoughnessTexture reads TEXCOORD_0, its baseColorTexture TEXCOORD_0 "
+                          "through a KHR_texture_transform"),
+            std::string::npos)
+      << warnings;
+  EXPECT_EQ(warnings.find("unsupported"), std::string::npos) << warnings;
+  // A set the primitive lacks: said, and the coordinates are (0, 0).
+  b.doc["materials"][0] = baseColor({{"index", 0}, {"texCoord", 3}});
+  const Scene missing = loadCapturing(b.writeGltf(dir_, "missing.gltf"), warnings);
+  EXPECT_NE(warnings.find("has no TEXCOORD_3"), std::string::npos) << warnings;
+  EXPECT_EQ(missing.triangles.at(0).uv[1], glm::vec2(0.0f));
 }
 
 TEST(GltfShippedScenes, EveryShippedSceneLoads) {
