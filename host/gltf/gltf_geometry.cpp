@@ -21,6 +21,7 @@ struct WorldVertices {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // empty: the file has none; NaN marks an unusable normal
   std::vector<glm::vec2> uvs;      // empty: the file has none
+  std::vector<glm::vec4> colors;   // COLOR_0, linear RGBA; empty: the file has none
 };
 
 // Whether the file declares KHR_mesh_quantization, which allows integer vertex attributes.
@@ -97,8 +98,31 @@ WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitiv
     }
   }
 
-  if (attributeAccessor(primitive, "COLOR_0") >= 0)
-    ctx.ignoring("COLOR_0", "vertex colours are not implemented; the base colour is used alone");
+  const int colorAccessor = attributeAccessor(primitive, "COLOR_0");
+  if (colorAccessor >= 0) {
+    const AccessorReader colors(ctx, colorAccessor, "COLOR_0 of " + where);
+    const int t = colors.componentType();
+    // The specification's formats: VEC3 or VEC4 of FLOAT, or of normalized UNSIGNED_BYTE/SHORT.
+    const bool validFormat =
+        (colors.type() == TINYGLTF_TYPE_VEC3 || colors.type() == TINYGLTF_TYPE_VEC4) &&
+        (t == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+         (colors.normalized() && (t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+    if (!validFormat) {
+      ctx.warning("COLOR_0 of " + where + " is neither FLOAT nor normalized UNSIGNED_BYTE/SHORT VEC3/VEC4; ignored");
+    } else {
+      if (colors.count() != count) ctx.fail("COLOR_0 of " + where + " has a different count than POSITION");
+      const int channels = colors.type() == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+      v.colors.resize(count);
+      for (size_t i = 0; i < count; ++i) {
+        glm::vec4 c(1.0f);
+        for (int k = 0; k < channels; ++k) {
+          const float x = colors.component(i, k);
+          c[k] = std::isfinite(x) ? std::min(std::max(x, 0.0f), 1.0f) : 1.0f;  // the spec's range is [0, 1]
+        }
+        v.colors[i] = c;
+      }
+    }
+  }
   const std::string uvName = "TEXCOORD_" + std::to_string(uvMapping.set);
   const int uvAccessor = attributeAccessor(primitive, uvName.c_str());
   if (uvAccessor < 0 && uvMapping.set != 0 && attributeAccessor(primitive, "TEXCOORD_0") >= 0)
@@ -223,6 +247,7 @@ size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex
         ++stats.invalidNormals;
       }
       tri.uv[k] = v.uvs.empty() ? glm::vec2(0.0f) : v.uvs[corner[k]];
+      if (!v.colors.empty()) tri.color[k] = v.colors[corner[k]];
     }
     tri.material = material;
     tri.primitive = primitiveId;

@@ -12,6 +12,7 @@ std::vector<uint32_t> FeatureSet::specialization() const {
   v[SPEC_HAS_METALS] = metals;
   v[SPEC_SINGLE_LIGHT] = singleLight;
   v[SPEC_HAS_ENVIRONMENT] = environment;
+  v[SPEC_HAS_VERTEX_COLORS] = vertexColors;
   return v;
 }
 
@@ -19,7 +20,7 @@ std::string FeatureSet::describe() const {
   auto b = [](bool x) { return x ? "1" : "0"; };
   return std::string("textures=") + b(textures) + " area-lights=" + b(areaLights) + " punctual-lights=" +
          b(punctualLights) + " metals=" + b(metals) + " single-light=" + b(singleLight) +
-         " environment=" + b(environment);
+         " environment=" + b(environment) + " vertex-colors=" + b(vertexColors);
 }
 
 FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
@@ -34,6 +35,9 @@ FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
   f.punctualLights = lights.hasPunctual();
   f.singleLight = lights.lights.size() == 1;
   f.environment = lights.environmentLight >= 0;
+  f.vertexColors = false;
+  for (const Triangle& t : scene.triangles)
+    for (const glm::vec4& c : t.color) f.vertexColors |= c != glm::vec4(1.0f);
   return f;
 }
 

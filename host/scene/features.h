@@ -17,6 +17,7 @@ struct FeatureSet {
   bool metals = true;
   bool singleLight = false;
   bool environment = true;
+  bool vertexColors = true;
 
   // Everything on: the fully general pipelines (--general-pipelines).
   static FeatureSet general() { return FeatureSet{}; }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "scene/environment_distribution.h"
+#include "shared/vertex_color.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -32,6 +33,9 @@ PreparedScene prepareScene(Scene scene) {
     s.uv0 = t.uv[0]; s.uv1 = t.uv[1]; s.uv2 = t.uv[2];
     s.material = t.material;
     s.emitter = p.lights.triangleEmitter[b];
+    s.color0 = shared::packVertexColor(t.color[0]);
+    s.color1 = shared::packVertexColor(t.color[1]);
+    s.color2 = shared::packVertexColor(t.color[2]);
   }
   for (const Texture& t : scene.textures) {
     shared::TextureGpu g{};

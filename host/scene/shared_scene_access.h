@@ -53,6 +53,7 @@
 #define HAS_METALS true
 #define SINGLE_LIGHT false
 #define HAS_ENVIRONMENT true
+#define HAS_VERTEX_COLORS true
 
 #include "shared/bvh_traverse.h"
 #include "shared/lights.h"

@@ -22,6 +22,7 @@ layout(constant_id = SPEC_HAS_PUNCTUAL_LIGHTS) const bool HAS_PUNCTUAL_LIGHTS = 
 layout(constant_id = SPEC_HAS_METALS) const bool HAS_METALS = true;
 layout(constant_id = SPEC_SINGLE_LIGHT) const bool SINGLE_LIGHT = false;
 layout(constant_id = SPEC_HAS_ENVIRONMENT) const bool HAS_ENVIRONMENT = true;
+layout(constant_id = SPEC_HAS_VERTEX_COLORS) const bool HAS_VERTEX_COLORS = true;
 
 #ifdef PASS_CONSTANTS
 layout(push_constant, scalar) uniform Push { PASS_CONSTANTS pc; };

@@ -84,8 +84,9 @@ const uint kSparseFlagValid = 4u;       // the cell's control variate is used (w
 
 // The stage a pipeline of the pass runs: a specialization constant, one pipeline per stage, so
 // that each is compiled alone (lavapipe runs every branch of a shader with masks: a stage chosen
-// by a push constant cost the sum of all stages). After the renderer's constant ids (SPEC_COUNT).
-#define SPEC_SPARSE_STAGE 10
+// by a push constant cost the sum of all stages). After the renderer's constant ids (SPEC_COUNT;
+// sparse_solve_pass.cpp checks).
+#define SPEC_SPARSE_STAGE 16   // room for the renderer's ids to grow
 // Its values.
 const uint kSparseInitCells = 0u;
 const uint kSparseMaxPairs = 1u;

@@ -49,6 +49,9 @@ struct TriangleShading {
   vec2 uv2;
   uint material;
   int emitter;         // index into the emitter buffer, -1 when the triangle does not emit
+  uvec2 color0;        // COLOR_0 at each corner (shared/vertex_color.h); white where the file has none
+  uvec2 color1;
+  uvec2 color2;
 };
 
 const uint kMaterialDoubleSided = 1u;

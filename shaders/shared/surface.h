@@ -8,6 +8,7 @@
 #include "shared/layouts.h"
 #include "shared/lights.h"
 #include "shared/texture.h"
+#include "shared/vertex_color.h"
 SHARED_BEGIN_WITH_BUFFERS
 
 struct SurfaceHit {
@@ -16,6 +17,7 @@ struct SurfaceHit {
   vec3 shadingNormal;    // unit, same side as geometricNormal
   vec2 uv;
   uint material;
+  vec4 vertexColor;      // COLOR_0 (white without it): multiplies the base colour and its alpha
 };
 
 SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDirection) {
@@ -35,12 +37,16 @@ SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDir
   h.shadingNormal = ns;
   h.uv = (1.0f - u - v) * s.uv0 + u * s.uv1 + v * s.uv2;
   h.material = s.material;
+  h.vertexColor = vec4(1.0f);
+  if (HAS_VERTEX_COLORS)
+    h.vertexColor = (1.0f - u - v) * unpackVertexColor(s.color0) + u * unpackVertexColor(s.color1) +
+                    v * unpackVertexColor(s.color2);
   return h;
 }
 
 SHARED_FN BsdfParams surfaceBsdf(SurfaceHit h) {
   MaterialGpu m = MATERIAL(h.material);
-  vec3 baseColor = m.baseColor;
+  vec3 baseColor = m.baseColor * vec3(h.vertexColor.x, h.vertexColor.y, h.vertexColor.z);
   float metallic = HAS_METALS ? m.metallic : 0.0f;
   float roughness = m.roughness;
   if (HAS_TEXTURES) {

@@ -71,28 +71,33 @@ class GltfWriter {
   }
 
   // Each call is its own mesh, node and primitive: an emissive one is one light of the renderer.
-  void addMesh(const std::vector<Tri>& tris, int material) {
+  // `colors`, when given, is COLOR_0 (linear RGBA, FLOAT VEC4): one per corner, 3 per triangle.
+  void addMesh(const std::vector<Tri>& tris, int material, const std::vector<glm::vec4>& colors = {}) {
     const size_t offset = bytes_.size();
     glm::vec3 lo(1e30f), hi(-1e30f);
     for (const Tri& t : tris)
       for (const glm::vec3& p : t.p) {
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
-        const size_t at = bytes_.size();
-        bytes_.resize(at + sizeof(float) * 3);
-        std::memcpy(&bytes_[at], &p.x, sizeof(float));
-        std::memcpy(&bytes_[at + 4], &p.y, sizeof(float));
-        std::memcpy(&bytes_[at + 8], &p.z, sizeof(float));
+        append(&p.x, 3);
       }
-    const int index = int(meshes_.size());
     bufferViews_.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes_.size() - offset}});
-    accessors_.push_back({{"bufferView", index},
+    accessors_.push_back({{"bufferView", bufferViews_.size() - 1},
                           {"componentType", 5126},
                           {"count", tris.size() * 3},
                           {"type", "VEC3"},
                           {"min", {lo.x, lo.y, lo.z}},
                           {"max", {hi.x, hi.y, hi.z}}});
-    meshes_.push_back({{"primitives", {{{"attributes", {{"POSITION", index}}}, {"material", material}, {"mode", 4}}}}});
+    nlohmann::json attributes = {{"POSITION", accessors_.size() - 1}};
+    if (!colors.empty()) {
+      const size_t colorOffset = bytes_.size();
+      for (const glm::vec4& c : colors) append(&c.x, 4);
+      bufferViews_.push_back({{"buffer", 0}, {"byteOffset", colorOffset}, {"byteLength", bytes_.size() - colorOffset}});
+      accessors_.push_back(
+          {{"bufferView", bufferViews_.size() - 1}, {"componentType", 5126}, {"count", colors.size()}, {"type", "VEC4"}});
+      attributes["COLOR_0"] = accessors_.size() - 1;
+    }
+    meshes_.push_back({{"primitives", {{{"attributes", attributes}, {"material", material}, {"mode", 4}}}}});
   }
 
   void setCamera(const CameraSpec& c) { camera_ = c; }
@@ -126,6 +131,12 @@ class GltfWriter {
   }
 
  private:
+  void append(const float* values, size_t n) {
+    const size_t at = bytes_.size();
+    bytes_.resize(at + sizeof(float) * n);
+    std::memcpy(&bytes_[at], values, sizeof(float) * n);
+  }
+
   std::vector<uint8_t> bytes_;
   nlohmann::json materials_ = nlohmann::json::array();
   nlohmann::json meshes_ = nlohmann::json::array();

@@ -806,8 +806,8 @@ TEST_F(GltfLoaderTest, RefusesRequiredUnsupportedExtensionEvenWhenTheParserFails
 }
 
 // Properties the renderer does not honour are named, each once however often the file uses it
-// (two materials with normal and occlusion maps and MASK, two primitives with COLOR_0, an
-// animation); what it honours is not named.
+// (two materials with normal and occlusion maps and MASK, an animation); what it honours (COLOR_0,
+// doubleSided, OPAQUE) is not named.
 TEST_F(GltfLoaderTest, NamesEachIgnoredPropertyOnce) {
   GltfBuilder b;
   const int pos = b.vec3s({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
@@ -831,9 +831,10 @@ TEST_F(GltfLoaderTest, NamesEachIgnoredPropertyOnce) {
     return n;
   };
   for (const char* property : {"ignoring normalTexture", "ignoring occlusionTexture: ambient occlusion maps are for rasterizers",
-                               "ignoring alphaMode MASK", "ignoring COLOR_0", "ignoring animations"})
+                               "ignoring alphaMode MASK", "ignoring animations"})
     EXPECT_EQ(count(property), 1u) << property << " in: " << warnings;
   EXPECT_EQ(count("OPAQUE"), 0u) << warnings;
+  EXPECT_EQ(count("COLOR_0"), 0u) << warnings;
 }
 
 TEST_F(GltfLoaderTest, WarnsAboutOptionalUnsupportedExtensionAndLoads) {
@@ -1130,6 +1131,37 @@ TEST_F(GltfLoaderTest, MaterialsReadTheirTexCoordSetThroughTheirTextureTransform
   const Scene missing = loadCapturing(b.writeGltf(dir_, "missing.gltf"), warnings);
   EXPECT_NE(warnings.find("has no TEXCOORD_3"), std::string::npos) << warnings;
   EXPECT_EQ(missing.triangles.at(0).uv[1], glm::vec2(0.0f));
+}
+
+// COLOR_0 in each of the specification's formats reaches the triangles as linear RGBA (alpha 1 for
+// VEC3), clamped to [0, 1]; another format is said and ignored (white).
+TEST_F(GltfLoaderTest, ReadsVertexColoursInEveryFormat) {
+  GltfBuilder b;
+  const int pos = b.vec3s({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  const int floats = b.vec3s({{0.5f, 0.25f, 2.0f}, {0.0f, 1.0f, 0.0f}, {0.1f, 0.2f, 0.3f}});
+  const std::vector<uint8_t> bytes = {255, 0, 0, 128, 0, 255, 0, 255, 0, 0, 51, 0};
+  const int ubyte = b.accessor(b.view(bytes.data(), bytes.size()), kUByte, 3, "VEC4", 0, true);
+  const std::vector<uint16_t> shorts = {65535, 0, 0, 0, 65535, 0, 13107, 0, 0};
+  const int ushort = b.accessor(b.view(shorts.data(), shorts.size() * 2), kUShort, 3, "VEC3", 0, true);
+  const int unnormalized = b.accessor(b.view(bytes.data(), bytes.size()), kUByte, 3, "VEC4");
+  json primitives = json::array();
+  for (int c : {floats, ubyte, ushort, unnormalized})
+    primitives.push_back({{"attributes", {{"POSITION", pos}, {"COLOR_0", c}}}});
+  b.scene({b.node({{"mesh", b.mesh(primitives)}})});
+  std::string warnings;
+  const Scene scene = loadCapturing(b.writeGltf(dir_), warnings);
+  ASSERT_EQ(scene.triangles.size(), 4u);
+  auto expectColour = [](const glm::vec4& actual, const glm::vec4& expected) {
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(actual[k], expected[k], 1e-6f) << "channel " << k;
+  };
+  expectColour(scene.triangles[0].color[0], {0.5f, 0.25f, 1.0f, 1.0f});  // 2.0 clamped
+  expectColour(scene.triangles[0].color[2], {0.1f, 0.2f, 0.3f, 1.0f});
+  expectColour(scene.triangles[1].color[0], {1.0f, 0.0f, 0.0f, 128.0f / 255.0f});
+  expectColour(scene.triangles[1].color[2], {0.0f, 0.0f, 0.2f, 0.0f});
+  expectColour(scene.triangles[2].color[2], {0.2f, 0.0f, 0.0f, 1.0f});
+  expectColour(scene.triangles[3].color[0], glm::vec4(1.0f));
+  EXPECT_NE(warnings.find("COLOR_0 of mesh 0 primitive 3 is neither"), std::string::npos) << warnings;
+  EXPECT_EQ(warnings.find("ignoring COLOR_0"), std::string::npos) << warnings;
 }
 
 TEST(GltfShippedScenes, EveryShippedSceneLoads) {
