@@ -44,6 +44,8 @@ MaterialGpu defaultMaterial() {
   m.metallicRoughnessTexture = -1;
   m.emissiveTexture = -1;
   m.flags = 0;
+  m.alpha = 1.0f;
+  m.alphaCutoff = 0.5f;
   return m;
 }
 
@@ -140,7 +142,8 @@ uint32_t MaterialTable::materialFor(int gltfMaterial) {
   const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
   MaterialGpu m = defaultMaterial();
   bool changed = false;
-  if (pbr.baseColorFactor.size() >= 3) {  // alpha (the 4th) is ignored: no transparency
+  if (pbr.baseColorFactor.size() >= 4) m.alpha = unitFactor(pbr.baseColorFactor[3], 1.0f, changed);
+  if (pbr.baseColorFactor.size() >= 3) {
     m.baseColor = glm::vec3(unitFactor(pbr.baseColorFactor[0], 1.0f, changed),
                             unitFactor(pbr.baseColorFactor[1], 1.0f, changed),
                             unitFactor(pbr.baseColorFactor[2], 1.0f, changed));
@@ -158,6 +161,22 @@ uint32_t MaterialTable::materialFor(int gltfMaterial) {
   m.metallicRoughnessTexture = textureFor(pbr.metallicRoughnessTexture, gltfMaterial, "metallicRoughnessTexture");
   m.emissiveTexture = textureFor(src.emissiveTexture, gltfMaterial, "emissiveTexture");
   m.flags = src.doubleSided ? shared::kMaterialDoubleSided : 0u;
+  if (src.alphaMode == "MASK" || src.alphaMode == "BLEND") {
+    const bool emissive = m.emission != glm::vec3(0.0f);
+    if (emissive) {
+      // A light's sampled points would have to see the same cut-outs as the rays that hit it;
+      // rendered opaque instead, and said.
+      ctx_.warning("material " + std::to_string(gltfMaterial) + " is emissive with alphaMode " + src.alphaMode +
+                   ": rendered opaque (alpha on lights is not supported)");
+    } else {
+      m.flags |= src.alphaMode == "MASK" ? shared::kMaterialAlphaMask : shared::kMaterialAlphaBlend;
+    }
+    if (src.alphaMode == "MASK") {
+      const double cutoff = src.alphaCutoff;
+      if (std::isfinite(cutoff) && cutoff >= 0.0) m.alphaCutoff = float(std::min(cutoff, 1.0));
+      else ctx_.warning("material " + std::to_string(gltfMaterial) + " has an invalid alphaCutoff; using 0.5");
+    }
+  }
   warnIgnoredProperties(src);
 
   materialSlots_[size_t(gltfMaterial)] = int(scene_.materials.size());
@@ -169,8 +188,6 @@ void MaterialTable::warnIgnoredProperties(const tinygltf::Material& src) const {
   if (src.normalTexture.index >= 0) ctx_.ignoring("normalTexture", "normal maps are not implemented; the geometric shading normals are used");
   if (src.occlusionTexture.index >= 0)
     ctx_.ignoring("occlusionTexture", "ambient occlusion maps are for rasterizers; a path tracer computes occlusion itself");
-  if (src.alphaMode == "MASK" || src.alphaMode == "BLEND")
-    ctx_.ignoring("alphaMode " + src.alphaMode, "transparency is not implemented; the surface is rendered opaque");
 }
 
 int MaterialTable::textureFor(const tinygltf::TextureInfo& info, int materialIndex, const char* slot) {

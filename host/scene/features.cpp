@@ -13,6 +13,7 @@ std::vector<uint32_t> FeatureSet::specialization() const {
   v[SPEC_SINGLE_LIGHT] = singleLight;
   v[SPEC_HAS_ENVIRONMENT] = environment;
   v[SPEC_HAS_VERTEX_COLORS] = vertexColors;
+  v[SPEC_HAS_ALPHA] = alpha;
   return v;
 }
 
@@ -20,16 +21,18 @@ std::string FeatureSet::describe() const {
   auto b = [](bool x) { return x ? "1" : "0"; };
   return std::string("textures=") + b(textures) + " area-lights=" + b(areaLights) + " punctual-lights=" +
          b(punctualLights) + " metals=" + b(metals) + " single-light=" + b(singleLight) +
-         " environment=" + b(environment) + " vertex-colors=" + b(vertexColors);
+         " environment=" + b(environment) + " vertex-colors=" + b(vertexColors) + " alpha=" + b(alpha);
 }
 
 FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
   FeatureSet f;
   f.textures = false;
   f.metals = false;
+  f.alpha = false;
   for (const MaterialGpu& m : scene.materials) {
     f.textures |= m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0;
     f.metals |= m.metallic > 0.0f || m.metallicRoughnessTexture >= 0;
+    f.alpha |= (m.flags & (shared::kMaterialAlphaMask | shared::kMaterialAlphaBlend)) != 0u;
   }
   f.areaLights = lights.hasArea();
   f.punctualLights = lights.hasPunctual();

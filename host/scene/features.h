@@ -18,6 +18,7 @@ struct FeatureSet {
   bool singleLight = false;
   bool environment = true;
   bool vertexColors = true;
+  bool alpha = true;
 
   // Everything on: the fully general pipelines (--general-pipelines).
   static FeatureSet general() { return FeatureSet{}; }

@@ -54,7 +54,10 @@
 #define SINGLE_LIGHT false
 #define HAS_ENVIRONMENT true
 #define HAS_VERTEX_COLORS true
+#define HAS_ALPHA true
 
+#include "shared/alpha.h"
+#define BVH_ALPHA_PASSES(i, u, v, origin, direction) alphaPassesThrough(i, u, v, origin, direction)
 #include "shared/bvh_traverse.h"
 #include "shared/lights.h"
 #include "shared/surface.h"

@@ -22,6 +22,7 @@
 #define SPEC_CMS_PAIR_TECHNIQUES 8   // the per-triangle control variate (shared/cms_pair_terms.h; cv, cms)
 #define SPEC_HAS_ENVIRONMENT 9       // an environment light (shared/environment.h)
 #define SPEC_HAS_VERTEX_COLORS 10     // COLOR_0 on some triangle (shared/vertex_color.h)
-#define SPEC_COUNT 11
+#define SPEC_HAS_ALPHA 11             // alphaMode MASK or BLEND on some material (shared/alpha.h)
+#define SPEC_COUNT 12
 
 #endif

@@ -4,6 +4,8 @@
 // The includer defines, before including this header:
 //   BVH_NODE(i)      -> the BvhNode at index i
 //   BVH_TRIANGLE(i)  -> the TriangleGeom at BVH-order index i
+// and, optionally, BVH_ALPHA_PASSES(i, u, v, origin, direction) -> bool: the ray passes through
+// triangle i there (alpha: shared/alpha.h); without it every triangle is opaque.
 // In C++ the functions have internal linkage (an anonymous namespace inside
 // mixtrace::shared), so two translation units that bind the macros to different buffers do not
 // collide under the one-definition rule.
@@ -130,6 +132,9 @@ SHARED_FN HitRecord bvhTraverse(vec3 origin, vec3 direction, float tMax, bool st
         float u = 0.0f;
         float v = 0.0f;
         if (bvhIntersectTriangle(BVH_TRIANGLE(i), origin, direction, hit.t, t, u, v)) {
+#ifdef BVH_ALPHA_PASSES
+          if (BVH_ALPHA_PASSES(i, u, v, origin, direction)) continue;
+#endif
           hit.t = t;
           hit.triangle = i;
           hit.u = u;

@@ -55,6 +55,8 @@ struct TriangleShading {
 };
 
 const uint kMaterialDoubleSided = 1u;
+const uint kMaterialAlphaMask = 2u;    // alphaMode MASK: cut where alpha < alphaCutoff (shared/alpha.h)
+const uint kMaterialAlphaBlend = 4u;   // alphaMode BLEND: stochastic transparency
 
 // glTF metallic-roughness material; textures are -1 when absent.
 struct MaterialGpu {
@@ -65,7 +67,9 @@ struct MaterialGpu {
   int baseColorTexture;
   int metallicRoughnessTexture;
   int emissiveTexture;
-  uint flags;          // kMaterialDoubleSided
+  uint flags;          // kMaterialDoubleSided, kMaterialAlphaMask, kMaterialAlphaBlend
+  float alpha;         // baseColorFactor's alpha (read only under MASK or BLEND)
+  float alphaCutoff;   // MASK's threshold
 };
 
 // glTF sampler wrap modes.

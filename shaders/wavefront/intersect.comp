@@ -5,6 +5,8 @@
 #define PASS_BUFFERS INTERSECT_BUFFERS
 #define PASS_CONSTANTS IntersectConstants
 #include "gpu/buffers.glsl"
+#include "shared/alpha.h"
+#define BVH_ALPHA_PASSES(i, u, v, origin, direction) alphaPassesThrough(i, u, v, origin, direction)
 #include "shared/bvh_traverse.h"
 #include "shared/constants.h"
 

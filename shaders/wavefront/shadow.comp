@@ -15,6 +15,8 @@
 #include "gpu/buffers.glsl"
 #define EMITTERS_UNIFORM (pc.lightSelection == kLightSelectUniform)
 #include "gpu/cms_statistics.glsl"
+#include "shared/alpha.h"
+#define BVH_ALPHA_PASSES(i, u, v, origin, direction) alphaPassesThrough(i, u, v, origin, direction)
 #include "shared/bvh_traverse.h"
 #include "shared/cms_sampling.h"
 

@@ -35,6 +35,9 @@ struct MaterialSpec {
   float roughness = 1.0f;
   glm::vec3 emission{0.0f};  // radiance Le; written as emissiveFactor times emissiveStrength
   bool doubleSided = false;
+  const char* alphaMode = "OPAQUE";  // glTF alphaMode; alpha is baseColorFactor's fourth component
+  float alpha = 1.0f;
+  float alphaCutoff = 0.5f;
 };
 
 // Pinhole camera: looks from `position` at `target`, `up` roughly up, vertical field of view.
@@ -52,10 +55,11 @@ struct CameraSpec {
 class GltfWriter {
  public:
   int addMaterial(const MaterialSpec& m) {
-    nlohmann::json pbr = {{"baseColorFactor", {m.baseColor.x, m.baseColor.y, m.baseColor.z, 1.0}},
+    nlohmann::json pbr = {{"baseColorFactor", {m.baseColor.x, m.baseColor.y, m.baseColor.z, m.alpha}},
                           {"metallicFactor", m.metallic},
                           {"roughnessFactor", m.roughness}};
-    nlohmann::json mat = {{"pbrMetallicRoughness", pbr}, {"doubleSided", m.doubleSided}};
+    nlohmann::json mat = {{"pbrMetallicRoughness", pbr}, {"doubleSided", m.doubleSided}, {"alphaMode", m.alphaMode}};
+    if (std::string(m.alphaMode) == "MASK") mat["alphaCutoff"] = m.alphaCutoff;
     // emissiveFactor is limited to [0, 1]; larger radiance goes through the strength extension.
     const float peak = std::max({m.emission.x, m.emission.y, m.emission.z});
     if (peak > 1.0f) {

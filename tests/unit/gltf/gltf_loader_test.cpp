@@ -806,8 +806,8 @@ TEST_F(GltfLoaderTest, RefusesRequiredUnsupportedExtensionEvenWhenTheParserFails
 }
 
 // Properties the renderer does not honour are named, each once however often the file uses it
-// (two materials with normal and occlusion maps and MASK, an animation); what it honours (COLOR_0,
-// doubleSided, OPAQUE) is not named.
+// (two materials with normal and occlusion maps, an animation); what it honours (COLOR_0,
+// doubleSided, alphaMode) is not named.
 TEST_F(GltfLoaderTest, NamesEachIgnoredPropertyOnce) {
   GltfBuilder b;
   const int pos = b.vec3s({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
@@ -831,10 +831,11 @@ TEST_F(GltfLoaderTest, NamesEachIgnoredPropertyOnce) {
     return n;
   };
   for (const char* property : {"ignoring normalTexture", "ignoring occlusionTexture: ambient occlusion maps are for rasterizers",
-                               "ignoring alphaMode MASK", "ignoring animations"})
+                               "ignoring animations"})
     EXPECT_EQ(count(property), 1u) << property << " in: " << warnings;
   EXPECT_EQ(count("OPAQUE"), 0u) << warnings;
   EXPECT_EQ(count("COLOR_0"), 0u) << warnings;
+  EXPECT_EQ(count("MASK"), 0u) << warnings;
 }
 
 TEST_F(GltfLoaderTest, WarnsAboutOptionalUnsupportedExtensionAndLoads) {
@@ -1162,6 +1163,38 @@ TEST_F(GltfLoaderTest, ReadsVertexColoursInEveryFormat) {
   expectColour(scene.triangles[3].color[0], glm::vec4(1.0f));
   EXPECT_NE(warnings.find("COLOR_0 of mesh 0 primitive 3 is neither"), std::string::npos) << warnings;
   EXPECT_EQ(warnings.find("ignoring COLOR_0"), std::string::npos) << warnings;
+}
+
+// alphaMode: MASK keeps its cutoff (default 0.5), BLEND its factor's alpha, OPAQUE neither; an
+// emissive material stays opaque, with a warning.
+TEST_F(GltfLoaderTest, ReadsAlphaModesAndCutoffs) {
+  GltfBuilder b;
+  auto material = [](const char* mode, double alpha, const json& extra = json::object()) {
+    json m = {{"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, alpha}}}}, {"alphaMode", mode}};
+    m.update(extra);
+    return m;
+  };
+  b.doc["materials"] = json::array({material("MASK", 0.7, {{"alphaCutoff", 0.25}}), material("MASK", 1.0),
+                                    material("BLEND", 0.3), material("OPAQUE", 0.2),
+                                    material("BLEND", 0.5, {{"emissiveFactor", {1, 1, 1}}})});
+  json primitives = json::array();
+  const int pos = b.vec3s({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  for (int m = 0; m < 5; ++m) primitives.push_back({{"attributes", {{"POSITION", pos}}}, {"material", m}});
+  b.scene({b.node({{"mesh", b.mesh(primitives)}})});
+  std::string warnings;
+  const Scene scene = loadCapturing(b.writeGltf(dir_), warnings);
+  auto materialOf = [&](size_t t) { return scene.materials.at(scene.triangles.at(t).material); };
+  using mixtrace::shared::kMaterialAlphaBlend;
+  using mixtrace::shared::kMaterialAlphaMask;
+  EXPECT_EQ(materialOf(0).flags & (kMaterialAlphaMask | kMaterialAlphaBlend), kMaterialAlphaMask);
+  EXPECT_FLOAT_EQ(materialOf(0).alphaCutoff, 0.25f);
+  EXPECT_FLOAT_EQ(materialOf(0).alpha, 0.7f);
+  EXPECT_FLOAT_EQ(materialOf(1).alphaCutoff, 0.5f);
+  EXPECT_EQ(materialOf(2).flags & (kMaterialAlphaMask | kMaterialAlphaBlend), kMaterialAlphaBlend);
+  EXPECT_FLOAT_EQ(materialOf(2).alpha, 0.3f);
+  EXPECT_EQ(materialOf(3).flags & (kMaterialAlphaMask | kMaterialAlphaBlend), 0u);
+  EXPECT_EQ(materialOf(4).flags & (kMaterialAlphaMask | kMaterialAlphaBlend), 0u);
+  EXPECT_NE(warnings.find("material 4 is emissive with alphaMode BLEND: rendered opaque"), std::string::npos) << warnings;
 }
 
 TEST(GltfShippedScenes, EveryShippedSceneLoads) {
