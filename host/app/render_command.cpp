@@ -176,7 +176,14 @@ int runRender(const RenderOptions& given) {
 
   RenderOutputInfo written{o.method, setup.estimator, prepared.scene.name, int(stats.spp), int(stats.targetSpp),
                            run.seconds, stats.interruptedBy};
-  writeRenderOutput(outputs.image, image, o.variance ? &standardError : nullptr, written, o.png);
+  const AovImages aovs = renderer->readAovs();
+  std::vector<ExrLayer> layers;
+  for (const std::string& name : outputs.aovs) {
+    if (name == "albedo") layers.push_back({{"albedo.R", "albedo.G", "albedo.B"}, &aovs.albedo});
+    if (name == "normal") layers.push_back({{"normal.X", "normal.Y", "normal.Z"}, &aovs.normal});
+    if (name == "depth") layers.push_back({{"depth.Z"}, &aovs.depth});
+  }
+  writeRenderOutput(outputs.image, image, o.variance ? &standardError : nullptr, written, o.png, layers);
   if (!outputs.stats.empty()) writeStatsJson(outputs.stats, stats);
 
   info("wrote " + outputs.image + ": " + std::to_string(stats.spp) + " spp in " + std::to_string(run.seconds) +

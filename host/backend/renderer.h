@@ -35,6 +35,7 @@ struct RenderSettings {
   // triangle, a group of them beyond the budget, or a punctual light), or one per light cluster
   // (the former per-cluster control variate, kept for comparisons).
   bool perTriangleCv = true;
+  bool aovs = false;             // also average the first hit's albedo, normal, depth (--aov)
   uint32_t pairTableSlots = 0;   // the (cell, technique) pair table's slots; 0 = sized for the scene
                                  // (testing aid: a tiny table forces refused pairs)
 };
@@ -75,6 +76,13 @@ struct RenderCounters {
   uint64_t pairBufferBytes = 0;       // memory of the pair buffers (keys, statistics, counts, alpha)
 };
 
+// The first hit's auxiliary images (--aov; shaders/shared/first_hit_aov.h), each RGB: albedo,
+// shading normal (x, y, z), depth (the distance in every channel). Empty unless
+// RenderSettings::aovs.
+struct AovImages {
+  Image albedo, normal, depth;
+};
+
 class Renderer {
  public:
   virtual ~Renderer() = default;
@@ -84,6 +92,7 @@ class Renderer {
   // Mean radiance per pixel, and the standard error of that mean when `standardError` is given
   // (not the variance: that would overflow float where the image is above ~1e19, shared/film.h).
   virtual Image readImage(Image* standardError = nullptr) const = 0;
+  virtual AovImages readAovs() const = 0;
   virtual RenderCounters counters() const = 0;
   // Time per pass in milliseconds (GPU timestamp queries; empty where there are no passes).
   virtual std::map<std::string, double> passTimesMs() const = 0;

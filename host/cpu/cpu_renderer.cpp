@@ -7,6 +7,7 @@
 
 #include "cpu/cpu_cms_path.h"
 #include "cpu/cpu_kernel_access.h"
+#include "shared/first_hit_aov.h"   // after the kernel access: it reads the scene through its macros
 #include "util/error.h"
 #include "shared/bsdf.h"
 #include "shared/camera.h"
@@ -111,7 +112,8 @@ CpuRenderer::CpuRenderer(const PreparedScene& scene, const MethodLights& lights,
       camera_(makeCamera(scene.scene, settings.width, settings.height)),
       lightCount_(uint32_t(scene.lights.lights.size())),
       threads_(settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency())),
-      film_(size_t(settings.width) * settings.height) {
+      film_(size_t(settings.width) * settings.height),
+      aovs_(settings.aovs ? shared::kAovStride * size_t(settings.width) * settings.height : 0, glm::dvec3(0.0)) {
   if (settings.maxDepth < 1) throw Error("--max-depth must be at least 1");
   if (lights.selection.size() != lightCount_) throw Error("internal: a light selection table of another scene");
   setUpTraining(settings);
@@ -143,6 +145,16 @@ void CpuRenderer::renderTile(uint32_t tile, uint32_t count, RenderCounters& loca
         float jitterY = shared::rngNextFloat(rng);
         glm::vec2 jitter(jitterX, jitterY);
         glm::vec3 direction = shared::cameraRayDirection(camera_, x, y, jitter);
+        if (!aovs_.empty()) {
+          // The camera ray's first hit again (the path tracer does not hand it out): what the
+          // Vulkan AOV pass reads from the intersect pass's hits.
+          const shared::FirstHitAov a = shared::firstHitAov(shared::traceClosest(camera_.position, direction, shared::kFloatMax), direction);
+          glm::dvec3* out = &aovs_[shared::kAovStride * pixel];
+          const double w = 1.0 / (double(sampleIndex) + 1.0);
+          out[shared::kAovAlbedo] += (glm::dvec3(a.albedo) - out[shared::kAovAlbedo]) * w;
+          out[shared::kAovNormal] += (glm::dvec3(a.normal) - out[shared::kAovNormal]) * w;
+          out[shared::kAovDepth] += (glm::dvec3(a.depth) - out[shared::kAovDepth]) * w;
+        }
         glm::vec3 l;
         if (cms_) {
           CmsPathContext ctx;
@@ -227,6 +239,19 @@ Image CpuRenderer::readImage(Image* standardError) const {
         standardError->rgb[3 * p + c] = float(std::sqrt(film_[p].m2[c] / (n * (n - 1.0))));
     }
   return mean;
+}
+
+AovImages CpuRenderer::readAovs() const {
+  AovImages out;
+  if (aovs_.empty()) return out;
+  out.albedo = out.normal = out.depth = Image(int(settings_.width), int(settings_.height));
+  for (size_t p = 0; p < film_.size(); ++p)
+    for (int c = 0; c < 3; ++c) {
+      out.albedo.rgb[3 * p + c] = float(aovs_[shared::kAovStride * p + shared::kAovAlbedo][c]);
+      out.normal.rgb[3 * p + c] = float(aovs_[shared::kAovStride * p + shared::kAovNormal][c]);
+      out.depth.rgb[3 * p + c] = float(aovs_[shared::kAovStride * p + shared::kAovDepth][c]);
+    }
+  return out;
 }
 
 RenderCounters CpuRenderer::counters() const {

@@ -32,6 +32,7 @@ class CpuRenderer : public Renderer {
   void renderSamples(uint32_t count) override;
   uint32_t samplesPerPixel() const override { return spp_; }
   Image readImage(Image* standardError = nullptr) const override;
+  AovImages readAovs() const override;
   RenderCounters counters() const override;
   std::map<std::string, double> passTimesMs() const override { return {}; }
   std::string deviceName() const override;
@@ -55,6 +56,7 @@ class CpuRenderer : public Renderer {
   uint32_t threads_;
   uint32_t spp_ = 0;
   std::vector<PixelStats> film_;
+  std::vector<glm::dvec3> aovs_;       // --aov: kAovStride running means per pixel (shared/aov_layout.h)
   RenderCounters counters_;
   std::unique_ptr<CpuCmsCells> cms_;   // null for the pt-* methods
   CpuKernelContext kernel_;            // the scene and cms_, bound by each worker thread

@@ -76,7 +76,8 @@ void addSlices(Imf::FrameBuffer& frameBuffer, const char* const names[3], Image&
 
 }  // namespace
 
-void writeExr(const std::string& path, const Image& image, const ExrMetadata& meta, const Image* standardError) {
+void writeExr(const std::string& path, const Image& image, const ExrMetadata& meta, const Image* standardError,
+              const std::vector<ExrLayer>& layers) {
   checkImageSize(image, "image");
   if (standardError) {
     checkImageSize(*standardError, "variance (standard error) image");
@@ -112,6 +113,17 @@ void writeExr(const std::string& path, const Image& image, const ExrMetadata& me
   if (standardError) {
     for (const char* name : kStandardErrorChannels) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     addSlices(frameBuffer, kStandardErrorChannels, const_cast<Image&>(*standardError), 0, 0);
+  }
+  for (const ExrLayer& layer : layers) {
+    checkImageSize(*layer.image, "layer " + layer.names.at(0));
+    if (layer.image->width != image.width || layer.image->height != image.height || layer.names.size() > 3)
+      throw Error("internal: EXR layer " + layer.names.at(0) + " does not fit the image");
+    const size_t xStride = 3 * sizeof(float), yStride = xStride * size_t(image.width);
+    char* base = reinterpret_cast<char*>(const_cast<float*>(layer.image->rgb.data()));
+    for (size_t c = 0; c < layer.names.size(); ++c) {
+      header.channels().insert(layer.names[c], Imf::Channel(Imf::FLOAT));
+      frameBuffer.insert(layer.names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride, 1, 1, 0.0));
+    }
   }
 
   // To a temporary file, renamed when complete: an interrupted write leaves no truncated EXR.
@@ -214,6 +226,31 @@ Image readExr(const std::string& path, ExrMetadata* meta, Image* standardError) 
     file.readPixels(dataWindow.min.y, dataWindow.max.y);
     if (legacyVariance)
       for (float& v : standardError->rgb) v = v >= 0.0f ? std::sqrt(v) : v;  // a negative one stays invalid
+    return image;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error("cannot read EXR '" + path + "': " + oneLine(e.what()));
+  }
+}
+
+Image readExrChannels(const std::string& path, const std::vector<std::string>& names) {
+  const int64_t fileSize = regularFileSize(path);
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
+    checkDataWindow(path, window, 3, fileSize);
+    Image image(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
+    const size_t xStride = 3 * sizeof(float), yStride = xStride * size_t(image.width);
+    char* base = reinterpret_cast<char*>(image.rgb.data()) - static_cast<ptrdiff_t>(window.min.x) * xStride -
+                 static_cast<ptrdiff_t>(window.min.y) * yStride;
+    Imf::FrameBuffer frameBuffer;
+    for (size_t c = 0; c < names.size() && c < 3; ++c) {
+      if (!file.header().channels().findChannel(names[c])) throw Error("EXR '" + path + "' has no " + names[c] + " channel");
+      frameBuffer.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride, 1, 1, 0.0));
+    }
+    file.setFrameBuffer(frameBuffer);
+    file.readPixels(window.min.y, window.max.y);
     return image;
   } catch (const Error&) {
     throw;

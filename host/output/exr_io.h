@@ -5,6 +5,7 @@
 // where a float variance overflows above pixel values of ~1e19 and underflows below ~1e-19.
 #include <map>
 #include <string>
+#include <vector>
 
 #include "output/image.h"
 
@@ -18,10 +19,21 @@ struct ExrMetadata {
   std::map<std::string, float> floats;
 };
 
-// Writes `image` (and `standardError`, which must have the same size, when given) as 32-bit
-// float channels. Throws mixtrace::Error when the file cannot be written.
+// More channels from another image of the same size: channel k of `names` holds component k of
+// `image` (at most 3; e.g. the AOVs "albedo.R/G/B", "normal.X/Y/Z", "depth.Z").
+struct ExrLayer {
+  std::vector<std::string> names;
+  const Image* image = nullptr;
+};
+
+// Writes `image` (and `standardError`, which must have the same size, when given, and `layers`)
+// as 32-bit float channels. Throws mixtrace::Error when the file cannot be written.
 void writeExr(const std::string& path, const Image& image, const ExrMetadata& meta,
-              const Image* standardError = nullptr);
+              const Image* standardError = nullptr, const std::vector<ExrLayer>& layers = {});
+
+// Reads channels `names` (1 to 3, all required) into components 0.. of an RGB image (the rest 0).
+// Throws mixtrace::Error as readExr does, or when a channel is missing.
+Image readExrChannels(const std::string& path, const std::vector<std::string>& names);
 
 // Reads R, G, B (all three are required) and, into `standardError` when given, standardError.R/G/B,
 // or the square root of variance.R/G/B from files of earlier versions (left empty — width 0 — when

@@ -28,7 +28,7 @@ std::string previewPathFor(const std::string& imagePath, bool png) {
 }
 
 void writeRenderOutput(const std::string& imagePath, const Image& image, const Image* standardError,
-                       const RenderOutputInfo& info, bool png) {
+                       const RenderOutputInfo& info, bool png, const std::vector<ExrLayer>& layers) {
   switch (imageFormatOf(imagePath)) {
     case ImageFormat::Png: writePngPreview(imagePath, image); return;
     case ImageFormat::Jpeg: writeJpegPreview(imagePath, image); return;
@@ -43,7 +43,7 @@ void writeRenderOutput(const std::string& imagePath, const Image& image, const I
   meta.strings["scene"] = info.scene;
   meta.strings["renderer"] = std::string("mixtrace ") + MIXTRACE_VERSION;
   if (!info.interruptedBy.empty()) meta.strings["interrupted"] = info.interruptedBy;
-  writeExr(imagePath, image, meta, standardError);
+  writeExr(imagePath, image, meta, standardError, layers);
   const std::string preview = previewPathFor(imagePath, png);
   if (!preview.empty()) writePngPreview(preview, image);
 }

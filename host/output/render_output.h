@@ -6,6 +6,9 @@
 // tonemapped image only. Every file is written atomically (output/atomic_file.h).
 #include <string>
 
+#include <vector>
+
+#include "output/exr_io.h"
 #include "output/image.h"
 
 namespace mixtrace {
@@ -30,7 +33,8 @@ struct RenderOutputInfo {
 };
 
 // `standardError` goes into an EXR only (the caller refuses --variance with other formats).
+// `layers`: more EXR channels (the AOVs), EXR only as well.
 void writeRenderOutput(const std::string& imagePath, const Image& image, const Image* standardError,
-                       const RenderOutputInfo& info, bool png);
+                       const RenderOutputInfo& info, bool png, const std::vector<ExrLayer>& layers = {});
 
 }  // namespace mixtrace

@@ -18,6 +18,7 @@ MethodSetup setUpMethod(const PreparedScene& prepared, const RenderOptions& o, c
   s.maxDepth = uint32_t(o.maxDepth);
   s.seed = o.seed;
   s.generalPipelines = o.generalPipelines;
+  s.aovs = !o.aov.empty();
   s.cms = cmsMethodFor(*row);
   s.cells = uint32_t(o.cells);
   s.relativeWeighting = o.relativeWeighting;

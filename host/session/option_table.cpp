@@ -161,6 +161,10 @@ std::vector<OptionRow> inputOutputRows() {
          "also store each pixel's standard error of the mean (sqrt of its variance), as EXR channels "
          "standardError.R, standardError.G, standardError.B",
          [](D& d, const V&) { d.render->variance = true; }),
+    text("--aov", "LIST", kForRender, G::Output,
+         "also write the first hit's albedo, normal and/or depth (comma-separated), averaged over each "
+         "pixel's samples, as EXR channels albedo.R/G/B, normal.X/Y/Z, depth.Z (what denoisers take)",
+         [](D& d, const V& v) { d.render->aov = v.text; }),
     text("--stats", "FILE.json", kForRender, G::Output, "write render statistics (timings, sample counts)",
          [](D& d, const V& v) { d.render->statsPath = v.text; }),
     withShortName(flag("--quiet", kForRenderAndView, G::Output,

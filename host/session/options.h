@@ -76,6 +76,7 @@ struct RenderOptions {
   std::optional<std::array<double, 3>> envColor;   // --env-color R,G,B
   double envScale;               // --env-scale
   double envRotateDegrees;       // --env-rotate
+  std::string aov;               // --aov albedo,normal,depth (any of them); empty: none
 };
 
 // `mixtrace compare`: a statistical test of whether two renders (written with --variance) estimate

@@ -9,6 +9,22 @@
 #include "util/error.h"
 
 namespace mixtrace {
+std::vector<std::string> parseAovList(const std::string& list) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (true) {
+    const size_t comma = list.find(',', start);
+    const std::string name = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (name != "albedo" && name != "normal" && name != "depth")
+      throw Error("--aov: '" + name + "' is not an AOV (albedo, normal, depth; comma-separated)");
+    for (const std::string& seen : out)
+      if (seen == name) throw Error("--aov: " + name + " is named twice");
+    out.push_back(name);
+    if (comma == std::string::npos) return out;
+    start = comma + 1;
+  }
+}
+
 namespace {
 
 // The image and its preview, from --out (its extension decides the format).
@@ -21,7 +37,10 @@ OutputPlan imageOutputs(const std::string& image, const RenderOptions& o) {
   }
   if (o.variance && format != ImageFormat::Exr)
     throw Error("--variance needs an .exr --out ('" + image + "' would hold only the tonemapped image)");
+  if (!o.aov.empty() && format != ImageFormat::Exr)
+    throw Error("--aov needs an .exr --out ('" + image + "' would hold only the tonemapped image)");
   OutputPlan plan;
+  if (!o.aov.empty()) plan.aovs = parseAovList(o.aov);
   plan.image = image;
   plan.preview = previewPathFor(image, o.png);
   return plan;

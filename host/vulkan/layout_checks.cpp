@@ -25,6 +25,7 @@
 #include "tests/trace_rays_interface.h"
 #include "viewer/display_interface.h"
 #include "wavefront/accumulate_interface.h"
+#include "wavefront/aov_interface.h"
 #include "wavefront/generate_interface.h"
 #include "wavefront/intersect_interface.h"
 #include "wavefront/prepare_interface.h"
@@ -67,6 +68,7 @@ PUSH_CONSTANTS_FIT(PrepareConstants)
 PUSH_CONSTANTS_FIT(IntersectConstants)
 PUSH_CONSTANTS_FIT(VertexConstants)
 PUSH_CONSTANTS_FIT(AccumulateConstants)
+PUSH_CONSTANTS_FIT(AovConstants)
 PUSH_CONSTANTS_FIT(PixelEstimateConstants)
 PUSH_CONSTANTS_FIT(SolveParams)
 PUSH_CONSTANTS_FIT(SparseSolveConstants)

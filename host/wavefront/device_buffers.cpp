@@ -1,5 +1,6 @@
 #include "wavefront/device_buffers.h"
 
+#include "shared/aov_layout.h"
 #include "shared/cms_pair_state.h"
 #include "shared/cms_state.h"
 #include "shared/path_state.h"
@@ -10,7 +11,7 @@ namespace {
 
 enum class Extent { ONE, PER_PATH, TWO_PER_PATH, SHADOW_SLOTS, PER_PIXEL, TWO_PER_PIXEL, CELL_SLOTS, CELL_STATS, CELL_SOLUTIONS,
                     PAIR_SLOTS, PAIR_STATS, PAIR_ALPHAS, PAIR_COUNTER_SLOTS, PAIR_OCCUPIED_SLOTS, CMS_PATHS, CMS_PIXELS, UPLOADED,
-                    WINDOW_PIXELS };
+                    WINDOW_PIXELS, AOV_PIXELS };
 enum class Access { READ_ONLY, READ_WRITE, READ_BACK };
 
 size_t elements(Extent extent, const BufferExtents& e) {
@@ -32,12 +33,15 @@ size_t elements(Extent extent, const BufferExtents& e) {
     case Extent::PAIR_OCCUPIED_SLOTS: return size_t(e.pairSlots) + shared::kPairOccupiedFirst;
     case Extent::CMS_PATHS: return e.cms ? e.paths : 1;
     case Extent::CMS_PIXELS: return e.cms ? pixels : 1;
+    case Extent::AOV_PIXELS: return e.aovs ? shared::kAovStride * pixels : 1;
     case Extent::UPLOADED: case Extent::WINDOW_PIXELS: break;
   }
   throw Error("internal: a buffer the renderer does not allocate");
 }
 
-bool perPixel(Extent extent) { return extent == Extent::PER_PIXEL || extent == Extent::TWO_PER_PIXEL; }
+bool perPixel(Extent extent) {
+  return extent == Extent::PER_PIXEL || extent == Extent::TWO_PER_PIXEL || extent == Extent::AOV_PIXELS;
+}
 
 }  // namespace
 

@@ -22,6 +22,7 @@ struct BufferExtents {
   bool cms = false;          // the method learns: CMS_PATHS and CMS_PIXELS are per path / pixel
   uint32_t cellSlots = 1;    // CMS cell table slots (1: the placeholder)
   uint32_t clusters = 1;     // L, for the per-cell strides
+  bool aovs = false;          // the render writes AOVs: AOV_PIXELS is kAovStride per pixel
   uint32_t pairSlots = 1;    // per-triangle CV: (cell, technique) pair table slots (1: the placeholder);
                              // more than 1 also doubles the shadow queue (SHADOW_SLOTS)
 };

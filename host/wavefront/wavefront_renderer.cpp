@@ -6,6 +6,7 @@
 
 #include "cms/cell_grid.h"
 #include "shared/bindings.h"
+#include "shared/aov_layout.h"
 #include "shared/film.h"
 #include "util/error.h"
 #include "vulkan/check.h"
@@ -40,6 +41,7 @@ BufferExtents extentsFor(const RenderSettings& s, const PreparedScene& scene, co
   e.width = s.width;
   e.height = s.height;
   e.cms = usesCms(s, cms);
+  e.aovs = s.aovs;
   e.clusters = clustersOf(s, cms);
   e.cellSlots = e.cms ? makeCellGrid(scene.scene.bounds, s.cells, e.clusters).tableSize : 1;
   if (pairTechniquesFor(s, cms)) e.pairSlots = pairTableCapacity(s.pairTableSlots, e.cellSlots, cms->techniques.techniqueCount);
@@ -131,6 +133,7 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   shade_ = std::make_unique<ShadePass>(ctx, spec, bindings_, floatAtomicVariants);
   shadow_ = std::make_unique<ShadowPass>(ctx, spec, bindings_, floatAtomicVariants);
   accumulate_ = std::make_unique<AccumulatePass>(ctx, spec, bindings_);
+  if (s.aovs) aov_ = std::make_unique<AovPass>(ctx, spec, bindings_);
 
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     buffer(shared::BINDING_QUEUE_STATE).fillZero(cmd);
@@ -183,6 +186,7 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
     vertex.queueIn = (depth - 1) & 1u;
     prepare_->record(cmd, timer_, shared::PrepareConstants{shared::kPrepareRays, vertex.queueIn});
     intersect_->record(cmd, timer_, shared::IntersectConstants{paths, vertex.queueIn});
+    if (depth == 1 && aov_) aov_->record(cmd, timer_, shared::AovConstants{paths, pixelOffset, sampleIndex});
     shade_->record(cmd, timer_, vertex, gathering);
     // The last depth only adds emission: no shadow rays; with the per-triangle control variate it
     // still queues the previous BSDF sample's pair terms for the shadow pass.
@@ -301,6 +305,7 @@ void WavefrontRenderer::restart(const shared::CameraGpu& camera) {
 
 void WavefrontRenderer::recordClearFilm(VkCommandBuffer cmd) {
   buffer(shared::BINDING_FILM).fillZero(cmd);
+  buffer(shared::BINDING_AOV).fillZero(cmd);
   vkCmdFillBuffer(cmd, buffer(shared::BINDING_FIRST_CELL).handle(), 0, VK_WHOLE_SIZE, shared::kNoCell);   // no pixel has a hit yet
   computeBarrier(cmd);
 }
@@ -320,6 +325,21 @@ Image WavefrontRenderer::readImage(Image* standardError) const {
       if (standardError) standardError->rgb[3 * p + c] = shared::standardErrorOfMean(film[2 * p + 1][c], float(spp_));
     }
   return mean;
+}
+
+AovImages WavefrontRenderer::readAovs() const {
+  AovImages out;
+  if (!settings_.aovs) return out;
+  std::vector<glm::vec3> aov(size_t(pixelCount_) * shared::kAovStride);
+  buffer(shared::BINDING_AOV).download(aov.data(), aov.size() * sizeof(glm::vec3));
+  out.albedo = out.normal = out.depth = Image(int(settings_.width), int(settings_.height));
+  for (size_t p = 0; p < pixelCount_; ++p)
+    for (int c = 0; c < 3; ++c) {
+      out.albedo.rgb[3 * p + c] = aov[shared::kAovStride * p + shared::kAovAlbedo][c];
+      out.normal.rgb[3 * p + c] = aov[shared::kAovStride * p + shared::kAovNormal][c];
+      out.depth.rgb[3 * p + c] = aov[shared::kAovStride * p + shared::kAovDepth].x;
+    }
+  return out;
 }
 
 std::string WavefrontRenderer::deviceName() const { return ctx_.deviceName(); }

@@ -16,6 +16,7 @@
 #include "wavefront/device_buffers.h"
 #include "wavefront/gpu_scene.h"
 #include "wavefront/passes/accumulate_pass.h"
+#include "wavefront/passes/aov_pass.h"
 #include "wavefront/passes/generate_pass.h"
 #include "wavefront/passes/intersect_pass.h"
 #include "wavefront/passes/pixel_estimate_pass.h"
@@ -49,6 +50,7 @@ class WavefrontRenderer : public Renderer {
   void renderSamples(uint32_t count) override;
   uint32_t samplesPerPixel() const override { return spp_; }
   Image readImage(Image* standardError = nullptr) const override;
+  AovImages readAovs() const override;
   RenderCounters counters() const override;
   std::map<std::string, double> passTimesMs() const override { return timer_.totalsMs(); }
   std::string deviceName() const override;
@@ -121,6 +123,7 @@ class WavefrontRenderer : public Renderer {
   std::unique_ptr<ShadePass> shade_;
   std::unique_ptr<ShadowPass> shadow_;
   std::unique_ptr<AccumulatePass> accumulate_;
+  std::unique_ptr<AovPass> aov_;   // only where the render writes AOVs
   PassTimer timer_;
   // The most timestamps one sample pass (all chunks, and the solve after it) has recorded so far:
   // what the next one is assumed to need when a submission is filled (renderSamples).

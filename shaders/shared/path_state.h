@@ -28,11 +28,14 @@
 // Per pixel: [2 * pixel] the running mean, [2 * pixel + 1] sqrt of the sum of squared deviations
 // (shared/film.h).
 #define BUFFER_FILM(X) X(FILM, film, 19, READ_BACK, vec3, TWO_PER_PIXEL, "film")
+// The first hit's albedo, normal and depth per pixel (shared/first_hit_aov.h); one element
+// unless the render writes them (--aov).
+#define BUFFER_AOV(X) X(AOV, aov, 49, READ_BACK, vec3, AOV_PIXELS, "AOVs")
 
 #define PATH_STATE_BUFFERS(X)                                                                             \
   BUFFER_RAY_ORIGIN(X) BUFFER_RAY_DIRECTION(X) BUFFER_THROUGHPUT(X) BUFFER_RADIANCE(X) BUFFER_RNG(X)     \
   BUFFER_MIS_PDF(X) BUFFER_HITS(X) BUFFER_RAY_QUEUE(X) BUFFER_SHADOW_QUEUE(X) BUFFER_QUEUE_STATE(X) \
-  BUFFER_FILM(X) BUFFER_MIS_NORMAL(X)
+  BUFFER_FILM(X) BUFFER_MIS_NORMAL(X) BUFFER_AOV(X)
 
 SHARED_BEGIN
 PATH_STATE_BUFFERS(BUFFER_BINDING_CONSTANT)

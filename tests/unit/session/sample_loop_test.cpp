@@ -22,6 +22,7 @@ class FakeRenderer : public Renderer {
   }
   uint32_t samplesPerPixel() const override { return spp_; }
   Image readImage(Image*) const override { return Image{}; }
+  AovImages readAovs() const override { return {}; }
   RenderCounters counters() const override { return {}; }
   std::map<std::string, double> passTimesMs() const override { return {}; }
   std::string deviceName() const override { return "fake"; }
