@@ -33,6 +33,7 @@
 #include "support/analytic/pixel_ztest.h"
 #include "support/analytic/quadrature.h"
 #include "support/analytic/render.h"
+#include "support/pfm_writer.h"
 #include "support/render_with_stats.h"
 #include "support/run_binary.h"
 
@@ -45,14 +46,6 @@ using namespace mixtrace::testing::analytic;
 
 const double kPi = 3.14159265358979323846;
 const char* const kBackends[] = {"vulkan", "cpu"};
-
-// A colour PFM (rows bottom to top, little-endian floats) from a map given top row first.
-void writePfm(const fs::path& path, int w, int h, const std::vector<glm::vec3>& topFirst) {
-  std::ofstream out(path, std::ios::binary);
-  out << "PF\n" << w << " " << h << "\n-1.0\n";
-  for (int y = h - 1; y >= 0; --y)
-    out.write(reinterpret_cast<const char*>(&topFirst[size_t(y) * w]), std::streamsize(sizeof(float) * 3 * w));
-}
 
 // The world direction of map coordinates (u, v) without rotation (shared/environment.h).
 glm::dvec3 mapDirection(double u, double v) {
