@@ -21,6 +21,7 @@
 
 #include "shared/bsdf.h"
 #include "support/analytic/direct_lighting.h"
+#include "support/analytic/expect_matches.h"
 #include "support/analytic/furnace.h"
 #include "support/analytic/gltf_writer.h"
 #include "support/analytic/meshes.h"
@@ -59,18 +60,6 @@ class AnalyticRender : public ::testing::TestWithParam<Param> {
     fs::remove_all(scratchDir("analytic"), ignored);
   }
 };
-
-// The check itself, then its power: the same check must reject the expectation scaled by 5%.
-void expectMatches(const RenderedImage& img, int spp, const Expectation& expected, double relTolerance) {
-  const ZTestResult r = zTest(img.mean, img.variance, spp, expected, relTolerance);
-  EXPECT_TRUE(r.passed()) << r.summary();
-  std::printf("check: %s\n", r.summary().c_str());
-  for (double scale : {0.95, 1.05}) {
-    const ZTestResult wrong = zTest(img.mean, img.variance, spp, expected, relTolerance, scale);
-    EXPECT_FALSE(wrong.passed()) << "the check accepts an expectation scaled by " << scale << ": " << wrong.summary();
-    std::printf("power (expectation x %.2f): %s\n", scale, wrong.summary().c_str());
-  }
-}
 
 // ---------------------------------------------------------------------------------------------
 // 1. White furnace: the inside of a closed emissive sphere, camera at its centre.

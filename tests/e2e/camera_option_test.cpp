@@ -15,6 +15,7 @@
 
 #include "output/exr_io.h"
 #include "session/options.h"
+#include "support/dark_cornell_box.h"
 #include "support/run_binary.h"
 
 namespace fs = std::filesystem;
@@ -70,15 +71,8 @@ TEST(DefaultCamera, IsNamedAndABlackClosedRoomIsWarnedAbout) {
 }
 
 TEST(DefaultCamera, NoLightsIsSaidAfterTheRender) {
-  // The Cornell box with its emitter's emission removed.
   const fs::path dir = scratchDir("dark");
-  std::ifstream in(fs::path(MIXTRACE_SOURCE_DIR) / "scenes/cornell_box.gltf");
-  nlohmann::json j = nlohmann::json::parse(in);
-  for (auto& material : j["materials"]) {
-    material.erase("emissiveFactor");
-    if (material.contains("extensions")) material["extensions"].erase("KHR_materials_emissive_strength");
-  }
-  writeFile(dir / "dark.gltf", j.dump());
+  writeDarkCornellBox(dir);
   // --env none: without it a scene without lights gets a white environment (environment_render_test).
   const RunResult r = runMixtrace(kQuick + "--spp 1 --no-png --env none " + (dir / "dark.gltf").string() + " --out " +
                                   (dir / "dark.exr").string());

@@ -25,6 +25,7 @@
 #include "compare/image_compare.h"
 #include "shared/bsdf.h"
 #include "support/analytic/direct_lighting.h"
+#include "support/analytic/expect_matches.h"
 #include "support/analytic/furnace.h"
 #include "support/analytic/gltf_writer.h"
 #include "support/analytic/meshes.h"
@@ -34,6 +35,7 @@
 #include "support/analytic/quadrature.h"
 #include "support/analytic/render.h"
 #include "support/pfm_writer.h"
+#include "support/dark_cornell_box.h"
 #include "support/render_with_stats.h"
 #include "support/run_binary.h"
 
@@ -51,16 +53,6 @@ const char* const kBackends[] = {"vulkan", "cpu"};
 glm::dvec3 mapDirection(double u, double v) {
   const double phi = 2.0 * kPi * u, theta = kPi * v;
   return {std::sin(phi) * std::sin(theta), std::cos(theta), -std::cos(phi) * std::sin(theta)};
-}
-
-void expectMatches(const RenderedImage& img, int spp, const Expectation& expected, double relTolerance) {
-  const ZTestResult r = zTest(img.mean, img.variance, spp, expected, relTolerance);
-  EXPECT_TRUE(r.passed()) << r.summary();
-  std::printf("check: %s\n", r.summary().c_str());
-  for (double scale : {0.95, 1.05}) {
-    const ZTestResult wrong = zTest(img.mean, img.variance, spp, expected, relTolerance, scale);
-    EXPECT_FALSE(wrong.passed()) << "the check accepts an expectation scaled by " << scale << ": " << wrong.summary();
-  }
 }
 
 RenderedImage renderWith(const fs::path& scene, const RenderSettings& s, const std::string& extra, const fs::path& out) {
@@ -257,18 +249,6 @@ INSTANTIATE_TEST_SUITE_P(Backends, EnvironmentRender, ::testing::ValuesIn(kBacke
                          [](const auto& info) { return std::string(info.param); });
 
 // ---------------------------------------------------------------------------------------------
-// The Cornell box with its light's emission removed: a scene without lights.
-fs::path darkBox(const fs::path& dir) {
-  std::ifstream in(fs::path(MIXTRACE_SOURCE_DIR) / "scenes/cornell_box.gltf");
-  nlohmann::json j = nlohmann::json::parse(in);
-  for (auto& material : j["materials"]) {
-    material.erase("emissiveFactor");
-    if (material.contains("extensions")) material["extensions"].erase("KHR_materials_emissive_strength");
-  }
-  writeFile(dir / "dark.gltf", j.dump());
-  return dir / "dark.gltf";
-}
-
 TEST(EnvironmentOptions, AnyErrorIsOneLineAndNothingIsWritten) {
   const fs::path dir = scratchDir("env-options");
   const std::string box = std::string(MIXTRACE_SOURCE_DIR) + "/scenes/cornell_box.gltf";
@@ -301,7 +281,7 @@ TEST(EnvironmentOptions, AnyErrorIsOneLineAndNothingIsWritten) {
 // --env none it stays black, and the render says why.
 TEST(EnvironmentDefault, SceneWithoutLightsGetsAWhiteEnvironment) {
   const fs::path dir = scratchDir("env-default");
-  const fs::path dark = darkBox(dir);
+  const fs::path dark = writeDarkCornellBox(dir);
   const std::string common = "render " + dark.string() + " --width 16 --height 16 --spp 4 --no-png ";
   const RunResult lit = runMixtrace(common + "--out " + (dir / "lit.exr").string() + " --stats " + (dir / "lit.json").string());
   ASSERT_EQ(lit.exitCode, 0) << lit.stderrText;

@@ -6,6 +6,7 @@
 
 #include <fstream>
 
+#include "support/dark_cornell_box.h"
 #include "support/run_binary.h"
 
 namespace mixtrace {
@@ -13,15 +14,8 @@ namespace {
 
 // The Cornell box with its light switched off, rendered with cms.
 TEST(CmsSetup, RenderOfASceneWithoutLightsSaysSo) {
-  std::ifstream in(std::string(MIXTRACE_SOURCE_DIR) + "/scenes/cornell_box.gltf");
-  nlohmann::json gltf = nlohmann::json::parse(in);
-  for (auto& material : gltf["materials"]) {
-    material.erase("emissiveFactor");
-    material.erase("extensions");
-  }
-  gltf.erase("extensionsUsed");
   const auto dir = testing::scratchDir("cms-no-lights");
-  testing::writeFile(dir / "dark.gltf", gltf.dump());
+  testing::writeDarkCornellBox(dir);
   const testing::RunResult r = testing::runMixtrace("render " + (dir / "dark.gltf").string() +
                                                     " --method cms --env none --spp 1 --width 8 --height 8 --no-png --out " +
                                                     (dir / "dark.exr").string());
