@@ -1,7 +1,8 @@
 #pragma once
 // Lets C++ run the shared shader headers (lights.h, surface.h, bvh_traverse.h, ...) on a
-// PreparedScene: binds their buffer-access macros to the scene's arrays and turns every feature
-// switch on (the CPU needs no specialisation). Include this instead of those headers, after
+// PreparedScene: binds their buffer-access macros to the scene's arrays and turns the feature
+// switches on (the CPU needs no specialisation), but for the two read at every hit candidate or
+// hit (alpha, vertex colours), which follow the scene. Include this instead of those headers, after
 // defining SHARED_SCENE as an expression naming the scene (a `const PreparedScene&`) and
 // SHARED_LIGHT_SELECTION as one naming the method's selection table (a `const
 // std::vector<LightSelectionGpu>&`, one entry per light, scene/light_selection.h): no process
@@ -53,8 +54,10 @@
 #define HAS_METALS true
 #define SINGLE_LIGHT false
 #define HAS_ENVIRONMENT true
-#define HAS_VERTEX_COLORS true
-#define HAS_ALPHA true
+// Read per hit candidate and per hit: decided by the scene at run time, so a scene without them
+// pays one branch (the GPU folds them away as specialization constants).
+#define HAS_VERTEX_COLORS (SHARED_SCENE.features.vertexColors)
+#define HAS_ALPHA (SHARED_SCENE.features.alpha)
 
 #include "shared/alpha.h"
 #define BVH_ALPHA_PASSES(i, u, v, origin, direction) alphaPassesThrough(i, u, v, origin, direction)
