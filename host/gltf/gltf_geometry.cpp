@@ -22,6 +22,7 @@ struct WorldVertices {
   std::vector<glm::vec3> normals;  // empty: the file has none; NaN marks an unusable normal
   std::vector<glm::vec2> uvs;      // empty: the file has none
   std::vector<glm::vec4> colors;   // COLOR_0, linear RGBA; empty: the file has none
+  std::vector<glm::vec4> tangents; // TANGENT (xyz unit, w = +-1); empty: the file has none
 };
 
 // Whether the file declares KHR_mesh_quantization, which allows integer vertex attributes.
@@ -53,7 +54,7 @@ bool texcoordFormat(const AccessorReader& a, bool quantization) {
 }
 
 WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitive& primitive, const std::string& where,
-                                const glm::dmat4& world, const UvMapping& uvMapping) {
+                                const glm::dmat4& world, const UvMapping& uvMapping, bool needsTangents) {
   WorldVertices v;
   const int positionAccessor = attributeAccessor(primitive, "POSITION");
   if (positionAccessor < 0) ctx.fail(where + " has no POSITION attribute");
@@ -95,6 +96,32 @@ WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitiv
       const glm::dvec3 n = normalMatrix * glm::dvec3(normals.vec3(i));
       const double length = glm::length(n);
       v.normals[i] = (length > 0.0 && std::isfinite(length)) ? glm::vec3(n / length) : glm::vec3(nan);
+    }
+  }
+
+  const int tangentAccessor = needsTangents ? attributeAccessor(primitive, "TANGENT") : -1;
+  if (tangentAccessor >= 0) {
+    const AccessorReader tangents(ctx, tangentAccessor, "TANGENT of " + where);
+    const int t = tangents.componentType();
+    const bool validFormat = tangents.type() == TINYGLTF_TYPE_VEC4 &&
+                             (t == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                              (quantization && tangents.normalized() &&
+                               (t == TINYGLTF_COMPONENT_TYPE_BYTE || t == TINYGLTF_COMPONENT_TYPE_SHORT)));
+    if (!validFormat) {
+      ctx.warning("TANGENT of " + where + " is neither a FLOAT VEC4 nor a quantized one; tangents generated from the UVs");
+    } else {
+      if (tangents.count() != count) ctx.fail("TANGENT of " + where + " has a different count than POSITION");
+      // Tangents are vectors of the surface: they transform by the model matrix. A mirroring
+      // transform turns the frame's handedness, so w flips with it.
+      const glm::dmat3 linear(world);
+      const double flip = glm::determinant(linear) < 0.0 ? -1.0 : 1.0;
+      v.tangents.resize(count);
+      for (size_t i = 0; i < count; ++i) {
+        const glm::dvec3 d = linear * glm::dvec3(tangents.component(i, 0), tangents.component(i, 1), tangents.component(i, 2));
+        const double length = glm::length(d);
+        const double w = tangents.component(i, 3) < 0.0f ? -flip : flip;
+        v.tangents[i] = (length > 0.0 && std::isfinite(length)) ? glm::vec4(glm::vec3(d / length), float(w)) : glm::vec4(0.0f);
+      }
     }
   }
 
@@ -193,6 +220,46 @@ std::vector<uint32_t> triangleList(int mode, std::vector<uint32_t> indices) {
   return list;
 }
 
+// Per-vertex tangents where the file has none (glTF prescribes MikkTSpace, which no Debian package
+// ships): each triangle's dp/du and dp/dv from its UVs, summed at its corners (so larger
+// triangles weigh more), then at each vertex the sum of dp/du made perpendicular to the vertex
+// normal, with w the sign that makes w cross(n, t) point along -dp/dv (glTF's +Y of a normal map
+// is up in the image, towards smaller v). MikkTSpace differs in weighting the corners by angle
+// and in splitting vertices where the frames disagree; on a smooth, consistently mapped surface
+// the two agree, at UV seams and mirrored UV islands they can differ.
+std::vector<glm::vec4> tangentsFromUvs(const WorldVertices& v, const std::vector<uint32_t>& indices) {
+  std::vector<glm::dvec3> du(v.positions.size(), glm::dvec3(0.0)), dv(v.positions.size(), glm::dvec3(0.0)),
+      faces(v.positions.size(), glm::dvec3(0.0));   // summed face normals: the normal where the file has none
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    const uint32_t a = indices[t], b = indices[t + 1], c = indices[t + 2];
+    const glm::dvec3 e1 = glm::dvec3(v.positions[b]) - glm::dvec3(v.positions[a]);
+    const glm::dvec3 e2 = glm::dvec3(v.positions[c]) - glm::dvec3(v.positions[a]);
+    const glm::dvec2 w1 = glm::dvec2(v.uvs[b]) - glm::dvec2(v.uvs[a]), w2 = glm::dvec2(v.uvs[c]) - glm::dvec2(v.uvs[a]);
+    for (uint32_t i : {a, b, c}) faces[i] += glm::cross(e1, e2);
+    const double r = w1.x * w2.y - w2.x * w1.y;
+    if (!(std::abs(r) > 1e-20) || !std::isfinite(r)) continue;   // degenerate UVs: no direction
+    const glm::dvec3 pu = (e1 * w2.y - e2 * w1.y) / r, pv = (e2 * w1.x - e1 * w2.x) / r;
+    if (!std::isfinite(pu.x + pu.y + pu.z + pv.x + pv.y + pv.z)) continue;
+    for (uint32_t i : {a, b, c}) {
+      du[i] += pu;
+      dv[i] += pv;
+    }
+  }
+  std::vector<glm::vec4> out(v.positions.size(), glm::vec4(0.0f));
+  for (size_t i = 0; i < out.size(); ++i) {
+    const double faceLength = glm::length(faces[i]);
+    const glm::dvec3 n = !v.normals.empty() && isFinite(v.normals[i]) ? glm::dvec3(v.normals[i])
+                         : faceLength > 0.0                           ? faces[i] / faceLength
+                                                                      : glm::dvec3(0.0);
+    const glm::dvec3 t = du[i] - n * glm::dot(n, du[i]);
+    const double length = glm::length(t);
+    if (!(length > 0.0) || !std::isfinite(length)) continue;
+    const double w = glm::dot(glm::cross(n, t), -dv[i]) < 0.0 ? -1.0 : 1.0;
+    out[i] = glm::vec4(glm::vec3(t / length), float(w));
+  }
+  return out;
+}
+
 }  // namespace
 
 glm::vec2 UvMapping::apply(glm::vec2 uv) const {
@@ -207,13 +274,14 @@ bool isSurfaceMode(int mode) {
 }
 
 size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex, const glm::dmat4& world,
-                       uint32_t material, const UvMapping& uvMapping, uint32_t primitiveId, std::vector<Triangle>& out,
-                       GeometryStats& stats) {
+                       uint32_t material, const UvMapping& uvMapping, bool needsTangents, uint32_t primitiveId,
+                       std::vector<Triangle>& out, GeometryStats& stats) {
   const tinygltf::Primitive& primitive = ctx.model.meshes[size_t(meshIndex)].primitives[size_t(primitiveIndex)];
   const std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex);
-  const WorldVertices v = transformVertices(ctx, primitive, where, world, uvMapping);
+  WorldVertices v = transformVertices(ctx, primitive, where, world, uvMapping, needsTangents);
   if (!isSurfaceMode(primitive.mode)) ctx.fail(where + " is not made of triangles");   // the caller skips those
   const std::vector<uint32_t> indices = triangleList(primitive.mode, readIndices(ctx, primitive, where, v.positions.size()));
+  if (needsTangents && v.tangents.empty() && !v.uvs.empty()) v.tangents = tangentsFromUvs(v, indices);
   stats.leftoverIndices += indices.size() % 3;
 
   // A mirroring transform turns counter-clockwise into clockwise; swapping two vertices keeps the
@@ -248,6 +316,7 @@ size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex
       }
       tri.uv[k] = v.uvs.empty() ? glm::vec2(0.0f) : v.uvs[corner[k]];
       if (!v.colors.empty()) tri.color[k] = v.colors[corner[k]];
+      if (!v.tangents.empty()) tri.tangent[k] = v.tangents[corner[k]];
     }
     tri.material = material;
     tri.primitive = primitiveId;

@@ -177,8 +177,8 @@ struct UvMapping {
 };
 
 size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex, const glm::dmat4& world,
-                       uint32_t material, const UvMapping& uvMapping, uint32_t primitiveId, std::vector<Triangle>& out,
-                       GeometryStats& stats);
+                       uint32_t material, const UvMapping& uvMapping, bool needsTangents, uint32_t primitiveId,
+                       std::vector<Triangle>& out, GeometryStats& stats);
 
 // --- gltf_materials.cpp: glTF materials and textures -> MaterialGpu and Texture, on demand.
 class MaterialTable {
@@ -190,6 +190,8 @@ class MaterialTable {
   // The texture coordinates glTF material `gltfMaterial` reads (set 0, untransformed, for the
   // default material and for a material without textures).
   UvMapping uvMappingFor(int gltfMaterial);
+  // Whether the material has a normal map (its triangles then need tangents).
+  bool hasNormalMap(int gltfMaterial) const;
 
  private:
   int textureFor(const tinygltf::TextureInfo& info, int materialIndex, const char* slot);

@@ -170,7 +170,8 @@ class SceneBuilder {
       const uint32_t material = materials_.materialFor(primitive.material);
       // One id per (node instance, primitive): each emissive instance becomes its own light.
       const size_t added = gltf::appendPrimitive(ctx_, node.mesh, int(p), world, material,
-                                                 materials_.uvMappingFor(primitive.material), nextPrimitiveId_,
+                                                 materials_.uvMappingFor(primitive.material),
+                                                 materials_.hasNormalMap(primitive.material), nextPrimitiveId_,
                                                  scene_.triangles, stats_);
       if (added > 0) ++nextPrimitiveId_;
     }

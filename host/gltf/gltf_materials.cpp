@@ -46,7 +46,18 @@ MaterialGpu defaultMaterial() {
   m.flags = 0;
   m.alpha = 1.0f;
   m.alphaCutoff = 0.5f;
+  m.normalTexture = -1;
+  m.normalScale = 1.0f;
   return m;
+}
+
+// A normal texture's reference as a plain one (its scale is read apart).
+tinygltf::TextureInfo asTextureInfo(const tinygltf::NormalTextureInfo& n) {
+  tinygltf::TextureInfo info;
+  info.index = n.index;
+  info.texCoord = n.texCoord;
+  info.extensions = n.extensions;
+  return info;
 }
 
 // The texture coordinates one texture reference reads: its texCoord, and its KHR_texture_transform
@@ -94,16 +105,22 @@ MaterialTable::MaterialTable(const LoadContext& ctx, Scene& scene)
       uvMappingDone_(ctx.model.materials.size(), 0),
       uvMappings_(ctx.model.materials.size()) {}
 
+bool MaterialTable::hasNormalMap(int gltfMaterial) const {
+  return gltfMaterial >= 0 && size_t(gltfMaterial) < ctx_.model.materials.size() &&
+         ctx_.model.materials[size_t(gltfMaterial)].normalTexture.index >= 0;
+}
+
 UvMapping MaterialTable::uvMappingFor(int gltfMaterial) {
   if (gltfMaterial < 0 || size_t(gltfMaterial) >= uvMappings_.size()) return UvMapping{};
   if (uvMappingDone_[size_t(gltfMaterial)]) return uvMappings_[size_t(gltfMaterial)];
   const tinygltf::Material& src = ctx_.model.materials[size_t(gltfMaterial)];
   const std::string where = "material " + std::to_string(gltfMaterial);
   // The textures the renderer reads, the base colour's first: it serves all where they disagree.
+  const tinygltf::TextureInfo normal = asTextureInfo(src.normalTexture);
   const std::pair<const tinygltf::TextureInfo*, const char*> textures[] = {
       {&src.pbrMetallicRoughness.baseColorTexture, "baseColorTexture"},
       {&src.pbrMetallicRoughness.metallicRoughnessTexture, "metallicRoughnessTexture"},
-      {&src.emissiveTexture, "emissiveTexture"}};
+      {&src.emissiveTexture, "emissiveTexture"}, {&normal, "normalTexture"}};
   UvMapping chosen;
   const char* chosenSlot = nullptr;
   for (const auto& [info, slot] : textures) {
@@ -160,6 +177,12 @@ uint32_t MaterialTable::materialFor(int gltfMaterial) {
   m.baseColorTexture = textureFor(pbr.baseColorTexture, gltfMaterial, "baseColorTexture");
   m.metallicRoughnessTexture = textureFor(pbr.metallicRoughnessTexture, gltfMaterial, "metallicRoughnessTexture");
   m.emissiveTexture = textureFor(src.emissiveTexture, gltfMaterial, "emissiveTexture");
+  m.normalTexture = textureFor(asTextureInfo(src.normalTexture), gltfMaterial, "normalTexture");
+  if (m.normalTexture >= 0) {
+    const double scale = src.normalTexture.scale;
+    if (std::isfinite(scale) && std::abs(scale) < 1e6) m.normalScale = float(scale);
+    else ctx_.warning("material " + std::to_string(gltfMaterial) + " has an invalid normalTexture scale; using 1");
+  }
   m.flags = src.doubleSided ? shared::kMaterialDoubleSided : 0u;
   if (src.alphaMode == "MASK" || src.alphaMode == "BLEND") {
     const bool emissive = m.emission != glm::vec3(0.0f);
@@ -185,7 +208,6 @@ uint32_t MaterialTable::materialFor(int gltfMaterial) {
 }
 
 void MaterialTable::warnIgnoredProperties(const tinygltf::Material& src) const {
-  if (src.normalTexture.index >= 0) ctx_.ignoring("normalTexture", "normal maps are not implemented; the geometric shading normals are used");
   if (src.occlusionTexture.index >= 0)
     ctx_.ignoring("occlusionTexture", "ambient occlusion maps are for rasterizers; a path tracer computes occlusion itself");
 }

@@ -14,6 +14,7 @@ std::vector<uint32_t> FeatureSet::specialization() const {
   v[SPEC_HAS_ENVIRONMENT] = environment;
   v[SPEC_HAS_VERTEX_COLORS] = vertexColors;
   v[SPEC_HAS_ALPHA] = alpha;
+  v[SPEC_HAS_NORMAL_MAPS] = normalMaps;
   return v;
 }
 
@@ -21,7 +22,7 @@ std::string FeatureSet::describe() const {
   auto b = [](bool x) { return x ? "1" : "0"; };
   return std::string("textures=") + b(textures) + " area-lights=" + b(areaLights) + " punctual-lights=" +
          b(punctualLights) + " metals=" + b(metals) + " single-light=" + b(singleLight) +
-         " environment=" + b(environment) + " vertex-colors=" + b(vertexColors) + " alpha=" + b(alpha);
+         " environment=" + b(environment) + " vertex-colors=" + b(vertexColors) + " alpha=" + b(alpha) + " normal-maps=" + b(normalMaps);
 }
 
 FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
@@ -29,10 +30,13 @@ FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
   f.textures = false;
   f.metals = false;
   f.alpha = false;
+  f.normalMaps = false;
   for (const MaterialGpu& m : scene.materials) {
-    f.textures |= m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0;
+    f.textures |= m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0 ||
+                  m.normalTexture >= 0;
     f.metals |= m.metallic > 0.0f || m.metallicRoughnessTexture >= 0;
     f.alpha |= (m.flags & (shared::kMaterialAlphaMask | shared::kMaterialAlphaBlend)) != 0u;
+    f.normalMaps |= m.normalTexture >= 0;
   }
   f.areaLights = lights.hasArea();
   f.punctualLights = lights.hasPunctual();

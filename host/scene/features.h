@@ -19,6 +19,7 @@ struct FeatureSet {
   bool environment = true;
   bool vertexColors = true;
   bool alpha = true;
+  bool normalMaps = true;
 
   // Everything on: the fully general pipelines (--general-pipelines).
   static FeatureSet general() { return FeatureSet{}; }

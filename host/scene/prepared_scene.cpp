@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "scene/environment_distribution.h"
+#include "shared/tangent_frame.h"
 #include "shared/vertex_color.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -36,6 +37,9 @@ PreparedScene prepareScene(Scene scene) {
     s.color0 = shared::packVertexColor(t.color[0]);
     s.color1 = shared::packVertexColor(t.color[1]);
     s.color2 = shared::packVertexColor(t.color[2]);
+    s.tangent0 = shared::packTangent(t.tangent[0]);
+    s.tangent1 = shared::packTangent(t.tangent[1]);
+    s.tangent2 = shared::packTangent(t.tangent[2]);
   }
   for (const Texture& t : scene.textures) {
     shared::TextureGpu g{};

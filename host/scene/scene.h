@@ -20,6 +20,7 @@ struct Triangle {
   glm::vec3 n[3];      // shading normals (unit); the geometric normal where the file has none
   glm::vec2 uv[3];     // the material's TEXCOORD set, transformed; (0,0) where the file has none
   glm::vec4 color[3] = {glm::vec4(1.0f), glm::vec4(1.0f), glm::vec4(1.0f)};  // COLOR_0 (linear RGBA)
+  glm::vec4 tangent[3] = {glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f)};  // xyz unit, w = +-1; 0: none
   uint32_t material;
   uint32_t primitive;  // index of the glTF mesh primitive instance it came from: one area light
 };

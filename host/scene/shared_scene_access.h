@@ -58,6 +58,7 @@
 // pays one branch (the GPU folds them away as specialization constants).
 #define HAS_VERTEX_COLORS (SHARED_SCENE.features.vertexColors)
 #define HAS_ALPHA (SHARED_SCENE.features.alpha)
+#define HAS_NORMAL_MAPS (SHARED_SCENE.features.normalMaps)
 
 #include "shared/alpha.h"
 #define BVH_ALPHA_PASSES(i, u, v, origin, direction) alphaPassesThrough(i, u, v, origin, direction)

@@ -23,6 +23,7 @@
 #define SPEC_HAS_ENVIRONMENT 9       // an environment light (shared/environment.h)
 #define SPEC_HAS_VERTEX_COLORS 10     // COLOR_0 on some triangle (shared/vertex_color.h)
 #define SPEC_HAS_ALPHA 11             // alphaMode MASK or BLEND on some material (shared/alpha.h)
-#define SPEC_COUNT 12
+#define SPEC_HAS_NORMAL_MAPS 12       // a material with a normalTexture (shared/surface.h)
+#define SPEC_COUNT 13
 
 #endif

@@ -52,6 +52,9 @@ struct TriangleShading {
   uvec2 color0;        // COLOR_0 at each corner (shared/vertex_color.h); white where the file has none
   uvec2 color1;
   uvec2 color2;
+  uint tangent0;       // the tangent at each corner (shared/tangent_frame.h); 0 where none
+  uint tangent1;
+  uint tangent2;
 };
 
 const uint kMaterialDoubleSided = 1u;
@@ -70,6 +73,8 @@ struct MaterialGpu {
   uint flags;          // kMaterialDoubleSided, kMaterialAlphaMask, kMaterialAlphaBlend
   float alpha;         // baseColorFactor's alpha (read only under MASK or BLEND)
   float alphaCutoff;   // MASK's threshold
+  int normalTexture;   // -1: none (shared/surface.h perturbs the shading normal with it)
+  float normalScale;   // normalTexture.scale: multiplies the map's x and y
 };
 
 // glTF sampler wrap modes.

@@ -7,6 +7,7 @@
 #include "shared/dialect.h"
 #include "shared/layouts.h"
 #include "shared/lights.h"
+#include "shared/tangent_frame.h"
 #include "shared/texture.h"
 #include "shared/vertex_color.h"
 SHARED_BEGIN_WITH_BUFFERS
@@ -20,6 +21,30 @@ struct SurfaceHit {
   vec4 vertexColor;      // COLOR_0 (white without it): multiplies the base colour and its alpha
 };
 
+// The shading normal n (unit, the file's side) perturbed by the material's normal map: the map's
+// texel in the tangent frame (T, w cross(n, T), n) of the interpolated tangent, its x and y
+// scaled by normalTexture.scale (glTF: +X right = +u, +Y up = -v, linear RGB 2c - 1). Unchanged
+// without a map or without a usable tangent.
+SHARED_FN vec3 normalMapped(TriangleShading s, float u, float v, vec2 uv, vec3 n) {
+  MaterialGpu m = MATERIAL(s.material);
+  if (m.normalTexture < 0) return n;
+  vec4 t0 = unpackTangent(s.tangent0);
+  vec4 t1 = unpackTangent(s.tangent1);
+  vec4 t2 = unpackTangent(s.tangent2);
+  vec3 t = (1.0f - u - v) * vec3(t0.x, t0.y, t0.z) + u * vec3(t1.x, t1.y, t1.z) + v * vec3(t2.x, t2.y, t2.z);
+  t = t - n * dot(n, t);   // Gram-Schmidt against the interpolated normal
+  float tl = length(t);
+  if (!(tl > 1e-6f)) return n;
+  t = t / tl;
+  float w = t0.w;          // one handedness per triangle: its first corner's
+  vec3 b = cross(n, t) * w;
+  vec4 texel = sampleTexture(m.normalTexture, uv, false);
+  vec3 c = vec3(texel.x * 2.0f - 1.0f, texel.y * 2.0f - 1.0f, texel.z * 2.0f - 1.0f);
+  vec3 mapped = c.x * m.normalScale * t + c.y * m.normalScale * b + c.z * n;
+  float ml = length(mapped);
+  return ml > 0.0f ? mapped / ml : n;
+}
+
 SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDirection) {
   TriangleGeom g = TRIANGLE(tri);
   TriangleShading s = TRIANGLE_SHADING(tri);
@@ -31,11 +56,12 @@ SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDir
   vec3 ns = (1.0f - u - v) * s.n0 + u * s.n1 + v * s.n2;
   float len = length(ns);
   ns = len > 0.0f ? ns / len : ng;
+  h.uv = (1.0f - u - v) * s.uv0 + u * s.uv1 + v * s.uv2;
+  if (HAS_NORMAL_MAPS && HAS_TEXTURES) ns = normalMapped(s, u, v, h.uv, ns);
   ns = front ? ns : -ns;
   // A shading normal that disagrees with the geometry (bad file normals) is not trusted.
   if (!(dot(ns, h.geometricNormal) > 0.0f)) ns = h.geometricNormal;
   h.shadingNormal = ns;
-  h.uv = (1.0f - u - v) * s.uv0 + u * s.uv1 + v * s.uv2;
   h.material = s.material;
   h.vertexColor = vec4(1.0f);
   if (HAS_VERTEX_COLORS)

@@ -806,7 +806,7 @@ TEST_F(GltfLoaderTest, RefusesRequiredUnsupportedExtensionEvenWhenTheParserFails
 }
 
 // Properties the renderer does not honour are named, each once however often the file uses it
-// (two materials with normal and occlusion maps, an animation); what it honours (COLOR_0,
+// (two materials with occlusion maps, an animation); what it honours (normal maps, COLOR_0,
 // doubleSided, alphaMode) is not named.
 TEST_F(GltfLoaderTest, NamesEachIgnoredPropertyOnce) {
   GltfBuilder b;
@@ -830,7 +830,7 @@ TEST_F(GltfLoaderTest, NamesEachIgnoredPropertyOnce) {
     for (size_t at = warnings.find(what); at != std::string::npos; at = warnings.find(what, at + 1)) ++n;
     return n;
   };
-  for (const char* property : {"ignoring normalTexture", "ignoring occlusionTexture: ambient occlusion maps are for rasterizers",
+  for (const char* property : {"ignoring occlusionTexture: ambient occlusion maps are for rasterizers",
                                "ignoring animations"})
     EXPECT_EQ(count(property), 1u) << property << " in: " << warnings;
   EXPECT_EQ(count("OPAQUE"), 0u) << warnings;
@@ -1195,6 +1195,53 @@ TEST_F(GltfLoaderTest, ReadsAlphaModesAndCutoffs) {
   EXPECT_EQ(materialOf(3).flags & (kMaterialAlphaMask | kMaterialAlphaBlend), 0u);
   EXPECT_EQ(materialOf(4).flags & (kMaterialAlphaMask | kMaterialAlphaBlend), 0u);
   EXPECT_NE(warnings.find("material 4 is emissive with alphaMode BLEND: rendered opaque"), std::string::npos) << warnings;
+}
+
+// Tangents for normal mapping: TANGENT as the file gives it, turned by the node (w flipped by a
+// mirroring one); without it, generated from the UVs: along +u, w making w cross(n, t) point up
+// the image (-v). Only primitives whose material has a normal map get them. The normal map's
+// scale is read.
+TEST_F(GltfLoaderTest, ReadsOrGeneratesTangentsForNormalMappedMaterials) {
+  GltfBuilder b;
+  // A unit quad in the XY plane facing +Z, image up (v = 0) at y = 1.
+  const int pos = b.vec3s({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  const int uv = b.vec2s({{0, 1}, {1, 1}, {1, 0}, {0, 0}});
+  const int mirroredUv = b.vec2s({{1, 1}, {0, 1}, {0, 0}, {1, 0}});   // u runs along -x
+  const int tangent = b.accessor(b.view(std::vector<float>{0, 1, 0, -1, 0, 1, 0, -1, 0, 1, 0, -1, 0, 1, 0, -1}.data(), 64),
+                                 kFloat, 4, "VEC4");
+  const int idx = b.scalars(std::vector<uint16_t>{0, 1, 2, 0, 2, 3}, kUShort);
+  const std::vector<uint8_t> png = encodePng(1, 1, 3, {128, 128, 255});
+  b.doc["images"] = json::array({{{"bufferView", b.view(png.data(), png.size())}, {"mimeType", "image/png"}}});
+  b.doc["textures"] = json::array({{{"source", 0}}});
+  b.doc["materials"] = json::array({{{"normalTexture", {{"index", 0}, {"scale", 0.5}}}}, json::object()});
+  auto prim = [&](int uvs, bool withTangent, int material) {
+    json attributes = {{"POSITION", pos}, {"TEXCOORD_0", uvs}};
+    if (withTangent) attributes["TANGENT"] = tangent;
+    return json{{"attributes", attributes}, {"indices", idx}, {"material", material}};
+  };
+  const int generated = b.mesh(json::array({prim(uv, false, 0)}));
+  const int mirrored = b.mesh(json::array({prim(mirroredUv, false, 0)}));
+  const int given = b.mesh(json::array({prim(uv, true, 0)}));
+  const int plain = b.mesh(json::array({prim(uv, false, 1)}));
+  b.scene({b.node({{"mesh", generated}}), b.node({{"mesh", mirrored}}), b.node({{"mesh", given}}),
+           b.node({{"mesh", given}, {"scale", {-1, 1, 1}}}), b.node({{"mesh", plain}})});
+  std::string warnings;
+  const Scene scene = loadCapturing(b.writeGltf(dir_), warnings);
+  ASSERT_EQ(scene.triangles.size(), 10u);
+  auto expectTangent = [&](size_t triangle, glm::vec4 expected) {
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 4; ++c)
+        EXPECT_NEAR(scene.triangles[triangle].tangent[k][c], expected[c], 1e-6f) << "triangle " << triangle << " corner " << k;
+  };
+  expectTangent(0, {1, 0, 0, 1});    // generated: +u is +x, up the image is +y = cross(+z, +x)
+  expectTangent(2, {-1, 0, 0, -1});  // mirrored UVs: +u is -x, cross(+z, -x) = -y is down: w = -1
+  expectTangent(4, {0, 1, 0, -1});   // the file's
+  expectTangent(6, {0, 1, 0, 1});    // the file's under a mirroring node: w flips
+  expectTangent(8, {0, 0, 0, 0});    // no normal map: no tangent
+  const mixtrace::MaterialGpu& m = scene.materials.at(scene.triangles[0].material);
+  EXPECT_GE(m.normalTexture, 0);
+  EXPECT_FLOAT_EQ(m.normalScale, 0.5f);
+  EXPECT_EQ(warnings.find("normalTexture"), std::string::npos) << warnings;
 }
 
 TEST(GltfShippedScenes, EveryShippedSceneLoads) {
