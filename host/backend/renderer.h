@@ -4,10 +4,12 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "cms/cms_setup.h"
 #include "cms/training_schedule.h"
 #include "output/image.h"
+#include "shared/aov_layout.h"
 #include "shared/cms_layouts.h"
 
 namespace mixtrace {
@@ -82,6 +84,21 @@ struct RenderCounters {
 struct AovImages {
   Image albedo, normal, depth;
 };
+
+// The images from per-pixel running means laid out as shared/aov_layout.h says (kAovStride
+// vectors per pixel: the GPU's float buffer, the CPU's doubles).
+template <class Vec3>
+AovImages aovImagesFrom(const std::vector<Vec3>& means, uint32_t width, uint32_t height) {
+  AovImages out;
+  out.albedo = out.normal = out.depth = Image(int(width), int(height));
+  for (size_t p = 0; p < size_t(width) * height; ++p)
+    for (int c = 0; c < 3; ++c) {
+      out.albedo.rgb[3 * p + c] = float(means[shared::kAovStride * p + shared::kAovAlbedo][c]);
+      out.normal.rgb[3 * p + c] = float(means[shared::kAovStride * p + shared::kAovNormal][c]);
+      out.depth.rgb[3 * p + c] = float(means[shared::kAovStride * p + shared::kAovDepth][0]);
+    }
+  return out;
+}
 
 class Renderer {
  public:

@@ -242,16 +242,7 @@ Image CpuRenderer::readImage(Image* standardError) const {
 }
 
 AovImages CpuRenderer::readAovs() const {
-  AovImages out;
-  if (aovs_.empty()) return out;
-  out.albedo = out.normal = out.depth = Image(int(settings_.width), int(settings_.height));
-  for (size_t p = 0; p < film_.size(); ++p)
-    for (int c = 0; c < 3; ++c) {
-      out.albedo.rgb[3 * p + c] = float(aovs_[shared::kAovStride * p + shared::kAovAlbedo][c]);
-      out.normal.rgb[3 * p + c] = float(aovs_[shared::kAovStride * p + shared::kAovNormal][c]);
-      out.depth.rgb[3 * p + c] = float(aovs_[shared::kAovStride * p + shared::kAovDepth][c]);
-    }
-  return out;
+  return aovs_.empty() ? AovImages{} : aovImagesFrom(aovs_, settings_.width, settings_.height);
 }
 
 RenderCounters CpuRenderer::counters() const {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -205,8 +206,7 @@ class MaterialTable {
   std::vector<int> materialSlots_;  // glTF material -> scene material, -1 until converted
   int defaultMaterial_ = -1;
   std::vector<int> textureSlots_;   // glTF texture -> scene texture; -1 not yet, -2 unusable
-  std::vector<int> uvMappingDone_;  // per glTF material: its UvMapping is in uvMappings_
-  std::vector<UvMapping> uvMappings_;
+  std::vector<std::optional<UvMapping>> uvMappings_;   // per glTF material, once asked for
 };
 
 // --- gltf_textures.cpp

@@ -102,7 +102,6 @@ MaterialTable::MaterialTable(const LoadContext& ctx, Scene& scene)
       scene_(scene),
       materialSlots_(ctx.model.materials.size(), -1),
       textureSlots_(ctx.model.textures.size(), -1),
-      uvMappingDone_(ctx.model.materials.size(), 0),
       uvMappings_(ctx.model.materials.size()) {}
 
 bool MaterialTable::hasNormalMap(int gltfMaterial) const {
@@ -112,7 +111,7 @@ bool MaterialTable::hasNormalMap(int gltfMaterial) const {
 
 UvMapping MaterialTable::uvMappingFor(int gltfMaterial) {
   if (gltfMaterial < 0 || size_t(gltfMaterial) >= uvMappings_.size()) return UvMapping{};
-  if (uvMappingDone_[size_t(gltfMaterial)]) return uvMappings_[size_t(gltfMaterial)];
+  if (uvMappings_[size_t(gltfMaterial)]) return *uvMappings_[size_t(gltfMaterial)];
   const tinygltf::Material& src = ctx_.model.materials[size_t(gltfMaterial)];
   const std::string where = "material " + std::to_string(gltfMaterial);
   // The textures the renderer reads, the base colour's first: it serves all where they disagree.
@@ -137,7 +136,6 @@ UvMapping MaterialTable::uvMappingFor(int gltfMaterial) {
                    "; the triangles carry one set of coordinates, so the " + chosenSlot + "'s serves both");
     }
   }
-  uvMappingDone_[size_t(gltfMaterial)] = 1;
   uvMappings_[size_t(gltfMaterial)] = chosen;
   return chosen;
 }

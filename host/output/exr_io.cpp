@@ -65,13 +65,19 @@ void checkImageSize(const Image& image, const std::string& what) {
 
 // Describes `image` as three interleaved FLOAT slices. `originX/Y` is the data window's corner:
 // OpenEXR addresses pixels by absolute coordinates, so the base pointer is shifted back by it.
-void addSlices(Imf::FrameBuffer& frameBuffer, const char* const names[3], Image& image, int originX, int originY) {
+// Channel c of `names` (at most 3) is component c of the image's pixels.
+void addSlices(Imf::FrameBuffer& frameBuffer, const std::vector<std::string>& names, Image& image, int originX,
+               int originY) {
   const size_t xStride = 3 * sizeof(float);
   const size_t yStride = xStride * static_cast<size_t>(image.width);
   char* base = reinterpret_cast<char*>(image.rgb.data()) - static_cast<ptrdiff_t>(originX) * xStride -
                static_cast<ptrdiff_t>(originY) * yStride;
-  for (int c = 0; c < 3; ++c)
+  for (size_t c = 0; c < names.size() && c < 3; ++c)
     frameBuffer.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride, 1, 1, 0.0));
+}
+
+void addSlices(Imf::FrameBuffer& frameBuffer, const char* const names[3], Image& image, int originX, int originY) {
+  addSlices(frameBuffer, std::vector<std::string>(names, names + 3), image, originX, originY);
 }
 
 }  // namespace
@@ -118,12 +124,8 @@ void writeExr(const std::string& path, const Image& image, const ExrMetadata& me
     checkImageSize(*layer.image, "layer " + layer.names.at(0));
     if (layer.image->width != image.width || layer.image->height != image.height || layer.names.size() > 3)
       throw Error("internal: EXR layer " + layer.names.at(0) + " does not fit the image");
-    const size_t xStride = 3 * sizeof(float), yStride = xStride * size_t(image.width);
-    char* base = reinterpret_cast<char*>(const_cast<float*>(layer.image->rgb.data()));
-    for (size_t c = 0; c < layer.names.size(); ++c) {
-      header.channels().insert(layer.names[c], Imf::Channel(Imf::FLOAT));
-      frameBuffer.insert(layer.names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride, 1, 1, 0.0));
-    }
+    for (const std::string& name : layer.names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    addSlices(frameBuffer, layer.names, const_cast<Image&>(*layer.image), 0, 0);
   }
 
   // To a temporary file, renamed when complete: an interrupted write leaves no truncated EXR.
@@ -241,14 +243,10 @@ Image readExrChannels(const std::string& path, const std::vector<std::string>& n
     const Imath::Box2i window = file.header().dataWindow();
     checkDataWindow(path, window, 3, fileSize);
     Image image(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
-    const size_t xStride = 3 * sizeof(float), yStride = xStride * size_t(image.width);
-    char* base = reinterpret_cast<char*>(image.rgb.data()) - static_cast<ptrdiff_t>(window.min.x) * xStride -
-                 static_cast<ptrdiff_t>(window.min.y) * yStride;
+    for (const std::string& name : names)
+      if (!file.header().channels().findChannel(name)) throw Error("EXR '" + path + "' has no " + name + " channel");
     Imf::FrameBuffer frameBuffer;
-    for (size_t c = 0; c < names.size() && c < 3; ++c) {
-      if (!file.header().channels().findChannel(names[c])) throw Error("EXR '" + path + "' has no " + names[c] + " channel");
-      frameBuffer.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride, 1, 1, 0.0));
-    }
+    addSlices(frameBuffer, names, image, window.min.x, window.min.y);
     file.setFrameBuffer(frameBuffer);
     file.readPixels(window.min.y, window.max.y);
     return image;

@@ -328,18 +328,10 @@ Image WavefrontRenderer::readImage(Image* standardError) const {
 }
 
 AovImages WavefrontRenderer::readAovs() const {
-  AovImages out;
-  if (!settings_.aovs) return out;
+  if (!settings_.aovs) return {};
   std::vector<glm::vec3> aov(size_t(pixelCount_) * shared::kAovStride);
   buffer(shared::BINDING_AOV).download(aov.data(), aov.size() * sizeof(glm::vec3));
-  out.albedo = out.normal = out.depth = Image(int(settings_.width), int(settings_.height));
-  for (size_t p = 0; p < pixelCount_; ++p)
-    for (int c = 0; c < 3; ++c) {
-      out.albedo.rgb[3 * p + c] = aov[shared::kAovStride * p + shared::kAovAlbedo][c];
-      out.normal.rgb[3 * p + c] = aov[shared::kAovStride * p + shared::kAovNormal][c];
-      out.depth.rgb[3 * p + c] = aov[shared::kAovStride * p + shared::kAovDepth].x;
-    }
-  return out;
+  return aovImagesFrom(aov, settings_.width, settings_.height);
 }
 
 std::string WavefrontRenderer::deviceName() const { return ctx_.deviceName(); }

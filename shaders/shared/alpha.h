@@ -16,7 +16,7 @@
 #include "shared/layouts.h"
 #include "shared/rng.h"
 #include "shared/texture.h"
-#include "shared/vertex_color.h"
+#include "shared/triangle_attributes.h"
 SHARED_BEGIN_WITH_BUFFERS
 
 // Uniform in [0, 1) from the ray and the triangle.
@@ -35,11 +35,9 @@ SHARED_FN float alphaHash(vec3 origin, vec3 direction, uint tri) {
 SHARED_FN float surfaceAlpha(TriangleShading s, MaterialGpu m, float u, float v) {
   float a = m.alpha;
   if (HAS_VERTEX_COLORS)
-    a *= (1.0f - u - v) * unpackVertexColor(s.color0).w + u * unpackVertexColor(s.color1).w +
-         v * unpackVertexColor(s.color2).w;
+    a *= triangleVertexColor(s, u, v).w;
   if (HAS_TEXTURES && m.baseColorTexture >= 0) {
-    vec2 uv = (1.0f - u - v) * s.uv0 + u * s.uv1 + v * s.uv2;
-    a *= sampleTexture(m.baseColorTexture, uv, true).w;   // alpha is linear either way
+    a *= sampleTexture(m.baseColorTexture, triangleUv(s, u, v), true).w;   // alpha is linear either way
   }
   return a;
 }

@@ -18,6 +18,7 @@
 #include "shared/ray_offset.h"
 #include "shared/sampling.h"
 #include "shared/texture.h"
+#include "shared/triangle_attributes.h"
 #ifdef LIGHT_BVH
 #include "shared/light_bvh.h"
 #endif
@@ -125,8 +126,7 @@ SHARED_FN vec3 emittedRadiance(uint tri, float u, float v, vec3 towardsViewer) {
   if (!front && (m.flags & kMaterialDoubleSided) == 0u) return vec3(0.0f);
   vec3 le = m.emission;
   if (HAS_TEXTURES && m.emissiveTexture >= 0) {
-    vec2 uv = (1.0f - u - v) * s.uv0 + u * s.uv1 + v * s.uv2;
-    vec4 t = sampleTexture(m.emissiveTexture, uv, true);
+    vec4 t = sampleTexture(m.emissiveTexture, triangleUv(s, u, v), true);
     le = le * vec3(t.x, t.y, t.z);
   }
   return le;

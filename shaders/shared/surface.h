@@ -9,7 +9,7 @@
 #include "shared/lights.h"
 #include "shared/tangent_frame.h"
 #include "shared/texture.h"
-#include "shared/vertex_color.h"
+#include "shared/triangle_attributes.h"
 SHARED_BEGIN_WITH_BUFFERS
 
 struct SurfaceHit {
@@ -56,7 +56,7 @@ SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDir
   vec3 ns = (1.0f - u - v) * s.n0 + u * s.n1 + v * s.n2;
   float len = length(ns);
   ns = len > 0.0f ? ns / len : ng;
-  h.uv = (1.0f - u - v) * s.uv0 + u * s.uv1 + v * s.uv2;
+  h.uv = triangleUv(s, u, v);
   if (HAS_NORMAL_MAPS && HAS_TEXTURES) ns = normalMapped(s, u, v, h.uv, ns);
   ns = front ? ns : -ns;
   // A shading normal that disagrees with the geometry (bad file normals) is not trusted.
@@ -65,8 +65,7 @@ SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDir
   h.material = s.material;
   h.vertexColor = vec4(1.0f);
   if (HAS_VERTEX_COLORS)
-    h.vertexColor = (1.0f - u - v) * unpackVertexColor(s.color0) + u * unpackVertexColor(s.color1) +
-                    v * unpackVertexColor(s.color2);
+    h.vertexColor = triangleVertexColor(s, u, v);
   return h;
 }
 
