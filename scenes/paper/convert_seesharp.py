@@ -16,14 +16,14 @@ Source: the snapshot converted is commit 65ebd1ca24fd83c7c16322cf2e2f129bd69fb3b
 qingqhua/ControlledMixtureSampling. Three of its files were absent from that snapshot (large
 blobs): Bathroom's Meshes/PlantSucculentEcheveria001.0.ply (left out) and RGBSofa's two
 modern_coffee_table_02 PNG textures (grey 0.5); every such change is listed in the scene's
-NOTES.txt. DiningRoom2 is converted without its environment map (mixtrace has no environment
-lighting yet): its two lamps light it, the window stays dark, so it is not the paper's image and
-stays out of the paper's table until environment lighting exists. GlossyManyLights is not one of
-the paper's table scenes and is not shipped.
+NOTES.txt. DiningRoom2's environment map (its JSON's "background") is written beside it as
+Skydome.exr in mixtrace's convention (below): render it with `--env Skydome.exr`.
+GlossyManyLights is not one of the paper's table scenes and is not shipped.
 
 Conventions followed (read from SeeSharp's loader, GitHub pgrit/SeeSharp: SeeSharp/IO/JsonScene.cs,
 PlyFile.cs, ObjConverter.cs, Cameras/PerspectiveCamera.cs, Shading/Materials/GenericMaterial.cs,
-Shading/Emitters/DiffuseEmitter.cs):
+Shading/Emitters/DiffuseEmitter.cs, Shading/Background/EnvironmentMap.cs; the reference
+implementation builds on SeeSharp 1.9.0, whose files these are read from where they differ):
 
 * Units and handedness. SeeSharp's world is right-handed, +Y up, and the scenes are in metres
   (exported from Blender). glTF is the same, so positions and normals are copied unchanged.
@@ -74,6 +74,23 @@ Shading/Emitters/DiffuseEmitter.cs):
   part below it (gamma 2.2 gives 0.63x at 0.1, 0.35x at 0.05). So the texels are re-encoded
   (v -> srgb_encode(v^2.2), a 256-entry table, before downscaling) that glTF's sRGB decoding
   gives SeeSharp's linear values. Texture files missing from the source give grey 0.5.
+* The environment map (a "background" of type "image"; SeeSharp 1.9.0's JsonScene.ReadBackground
+  reads its filename only: no scale, no rotation, so --env-scale 1 and --env-rotate 0). SeeSharp's
+  EnvironmentMap looks a direction d up as phi = atan2(d.z, d.x) wrapped to [0, 2 pi),
+  theta = atan2(sqrt(d.x^2 + d.z^2), d.y), texel (column, row) = (int(phi / 2 pi * W),
+  int(theta / pi * H)), row 0 the image's top as SimpleImageIO holds it (its PFM reader,
+  Core/imageio.cpp CachePfmImage, reverses the file's bottom-to-top rows, as mixtrace's does).
+  So +Y is the top row, +X column 0, +Z column W/4, -X W/2, -Z 3W/4: SeeSharp's own test
+  (SeeSharp.Tests Background_EnvironmentMap.Rotation_ShouldBeCW: texel (0, H/2) is +X, (W/4, H/2)
+  is +Z) says the same, and the class comment's "longitude zero is -X" does not match its code.
+  mixtrace's map (docs/conventions.md, shaders/shared/environment.h; Mitsuba 3's envmap) has
+  u = atan2(d.x, -d.z) / 2 pi and v = acos(d.y) / pi: -Z column 0, +X W/4, +Z W/2, -X 3W/4, the
+  same rows. Both longitudes turn the same way (+X towards +Z), a quarter turn apart:
+  u_mixtrace = u_SeeSharp + 1/4. So the image is rolled by W/4 columns to the right (SeeSharp's
+  column c becomes column (c + W/4) mod W), unflipped and unresampled: every direction reads the
+  texel SeeSharp reads, nearest texel in both renderers. It is written as a 32-bit float
+  OpenEXR (ZIP compression: lossless; DiningRoom2's 512x256 Skydome.pfm of 1.57 MB becomes
+  0.73 MB), named after the source file.
 """
 import json
 import math
@@ -85,6 +102,7 @@ import sys
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+REPOSITORY = os.path.dirname(os.path.dirname(HERE))
 MAX_TEXTURE_SIDE = 512
 JPEG_QUALITY = 85
 SEESHARP_MIN_ALPHA = 0.001   # GenericMaterial.ComputeLocalParams
@@ -332,6 +350,151 @@ class Notes:
 
 
 # ---------------------------------------------------------------------------------------------
+# The environment map: SeeSharp's equirectangular map -> mixtrace's (see the header), as OpenEXR.
+
+
+def read_pfm(path):
+    """A PFM file (PF colour or Pf grey) -> (H, W, 3) float32, row 0 the image's top (PFM stores
+    rows bottom to top; SeeSharp's reader and mixtrace's both reverse them)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    fields, at = [], 0
+    while len(fields) < 4:  # "PF", width, height, scale: whitespace-separated, one byte after the last
+        while data[at:at + 1].isspace():
+            at += 1
+        end = at
+        while not data[end:end + 1].isspace():
+            end += 1
+        fields.append(data[at:end].decode("ascii"))
+        at = end
+    at += 1
+    channels = {"PF": 3, "Pf": 1}[fields[0]]
+    w, h, scale = int(fields[1]), int(fields[2]), float(fields[3])
+    img = np.frombuffer(data, dtype="<f4" if scale < 0 else ">f4", count=w * h * channels, offset=at)
+    img = img.reshape(h, w, channels)[::-1].astype(np.float32)
+    return np.repeat(img, 3, axis=2) if channels == 1 else img
+
+
+def seesharp_env_to_mixtrace(img):
+    """SeeSharp's map (H, W, 3), top row first -> mixtrace's: rolled W/4 columns to the right."""
+    w = img.shape[1]
+    if w % 4:
+        raise ValueError("an environment map %d texels wide: a quarter turn is not a whole number of columns" % w)
+    return np.roll(img, w // 4, axis=1)
+
+
+EXR_MAGIC = 20000630
+EXR_ZIP_LINES = 16  # ZIP_COMPRESSION: 16 scanlines per chunk
+
+
+def _exr_attr(name, kind, value):
+    return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(value)) + value
+
+
+def write_exr(path, img):
+    """(H, W, 3) float32 -> a scanline OpenEXR of FLOAT channels B, G, R, ZIP-compressed
+    (lossless), row 0 the top (INCREASING_Y). The same bytes on every run."""
+    import zlib
+    h, w, _ = img.shape
+    chlist = b"".join(c + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1) for c in (b"B", b"G", b"R")) + b"\0"
+    box = struct.pack("<4i", 0, 0, w - 1, h - 1)
+    header = struct.pack("<ii", EXR_MAGIC, 2) + b"".join([
+        _exr_attr("channels", "chlist", chlist), _exr_attr("compression", "compression", b"\x03"),
+        _exr_attr("dataWindow", "box2i", box), _exr_attr("displayWindow", "box2i", box),
+        _exr_attr("lineOrder", "lineOrder", b"\x00"), _exr_attr("pixelAspectRatio", "float", struct.pack("<f", 1)),
+        _exr_attr("screenWindowCenter", "v2f", struct.pack("<2f", 0, 0)),
+        _exr_attr("screenWindowWidth", "float", struct.pack("<f", 1))]) + b"\0"
+    planar = np.ascontiguousarray(img[:, :, ::-1].transpose(0, 2, 1).astype("<f4"))  # per row: B..., G..., R...
+    chunks = []
+    for y in range(0, h, EXR_ZIP_LINES):
+        raw = np.frombuffer(planar[y:y + EXR_ZIP_LINES].tobytes(), dtype=np.uint8)
+        t = np.concatenate([raw[0::2], raw[1::2]])  # OpenEXR's ZIP: bytes reordered, then deltas
+        d = t.copy()
+        d[1:] = (t[1:].astype(np.int16) - t[:-1] + 128) & 0xFF
+        packed = zlib.compress(d.tobytes(), 9)
+        if len(packed) >= len(raw):
+            packed = raw.tobytes()  # stored uncompressed where compressing does not pay
+        chunks.append(struct.pack("<ii", y, len(packed)) + packed)
+    offsets, at = [], len(header) + 8 * len(chunks)
+    for c in chunks:
+        offsets.append(at)
+        at += len(c)
+    with open(path, "wb") as f:
+        f.write(header + struct.pack("<%dQ" % len(offsets), *offsets) + b"".join(chunks))
+
+
+def read_exr(path):
+    """Reads back what write_exr writes (scanline, FLOAT R, G, B, no or ZIP compression) ->
+    (H, W, 3) float32, row 0 the top. Written against the OpenEXR file layout, for --check."""
+    import zlib
+    with open(path, "rb") as f:
+        data = f.read()
+    magic, version = struct.unpack_from("<ii", data, 0)
+    assert magic == EXR_MAGIC and version & 0xFF == 2 and not version & 0x1E00, "not a single-part scanline EXR"
+    at, attrs = 8, {}
+    while data[at] != 0:
+        name_end = data.index(b"\0", at)
+        kind_end = data.index(b"\0", name_end + 1)
+        size = struct.unpack_from("<i", data, kind_end + 1)[0]
+        attrs[data[at:name_end].decode()] = data[kind_end + 5:kind_end + 5 + size]
+        at = kind_end + 5 + size
+    at += 1
+    channels, c = [], 0
+    chl = attrs["channels"]
+    while chl[c] != 0:
+        end = chl.index(b"\0", c)
+        ptype, _, xs, ys = struct.unpack_from("<iB3xii", chl, end + 1)
+        assert ptype == 2 and xs == 1 and ys == 1, "channels must be FLOAT, unsampled"
+        channels.append(chl[c:end].decode())
+        c = end + 17
+    assert sorted(channels) == ["B", "G", "R"], "channels %s, not R, G, B" % channels
+    compression = attrs["compression"][0]
+    assert compression in (0, 3), "compression %d (only none and ZIP are read)" % compression
+    lines = {0: 1, 3: EXR_ZIP_LINES}[compression]
+    x0, y0, x1, y1 = struct.unpack("<4i", attrs["dataWindow"])
+    w, h = x1 - x0 + 1, y1 - y0 + 1
+    n = (h + lines - 1) // lines
+    planar = np.zeros((h, len(channels), w), dtype="<f4")
+    for k, offset in enumerate(struct.unpack_from("<%dQ" % n, data, at)):
+        y, size = struct.unpack_from("<ii", data, offset)
+        rows = min(lines, y1 + 1 - y)
+        payload = data[offset + 8:offset + 8 + size]
+        expected = rows * len(channels) * w * 4
+        if size < expected:
+            d = np.frombuffer(zlib.decompress(payload), dtype=np.uint8).astype(np.int64)
+            t = ((np.cumsum(d - 128) + 128) & 0xFF).astype(np.uint8)
+            t[0] = d[0]
+            raw = np.empty_like(t)
+            half = (len(t) + 1) // 2
+            raw[0::2], raw[1::2] = t[:half], t[half:]
+            payload = raw.tobytes()
+        assert len(payload) == expected, "chunk %d: %d bytes, not %d" % (k, len(payload), expected)
+        planar[y - y0:y - y0 + rows] = np.frombuffer(payload, dtype="<f4").reshape(rows, len(channels), w)
+    order = [channels.index(ch) for ch in ("R", "G", "B")]
+    return planar[:, order, :].transpose(0, 2, 1).astype(np.float32)
+
+
+def convert_background(src_dir, background, out_dir, notes):
+    """Writes the scene's environment map in mixtrace's convention; returns its file name."""
+    if background.get("type") != "image":
+        raise ValueError("background of type %s is not supported" % background.get("type"))
+    unknown = sorted(set(background) - {"type", "filename"})
+    if unknown:  # SeeSharp 1.9.0 reads none: a newer field would need its meaning worked out
+        raise ValueError("background fields %s are not understood" % unknown)
+    src = background["filename"]
+    if not src.lower().endswith(".pfm"):
+        raise ValueError("background %s: only PFM environment maps are converted" % src)
+    img = seesharp_env_to_mixtrace(read_pfm(os.path.join(src_dir, src)))
+    name = os.path.splitext(os.path.basename(src))[0] + ".exr"
+    os.makedirs(out_dir, exist_ok=True)
+    write_exr(os.path.join(out_dir, name), img)
+    notes.add("environment map %s (%dx%d) written as %s in mixtrace's convention (columns rolled by a quarter "
+              "turn, texels unchanged); scale 1, no rotation (the JSON gives none)"
+              % (src, img.shape[1], img.shape[0], name))
+    return name
+
+
+# ---------------------------------------------------------------------------------------------
 # glTF writing.
 
 
@@ -508,9 +671,8 @@ def convert(src_dir, out_root):
     print(scene_name)
     notes = Notes()
     w = GltfWriter()
-    if "background" in js:
-        notes.add("background (environment map %s) dropped: mixtrace has no environment lighting"
-                  % js["background"].get("filename", "?"))
+    out_dir = os.path.join(out_root, scene_name)
+    environment = convert_background(src_dir, js["background"], out_dir, notes) if "background" in js else None
 
     transforms = {t["name"]: seesharp_transform(t) for t in js["transforms"]}
     cam = js["cameras"][-1]  # SeeSharp keeps the last camera
@@ -568,7 +730,6 @@ def convert(src_dir, out_root):
         w.doc["extensionsUsed"] = ["KHR_materials_emissive_strength"]
     for key in [k for k, v in w.doc.items() if v == []]:
         del w.doc[key]
-    out_dir = os.path.join(out_root, scene_name)
     os.makedirs(out_dir, exist_ok=True)
     w.doc["buffers"] = [{"uri": scene_name + ".bin", "byteLength": len(w.bin)}]
     with open(os.path.join(out_dir, scene_name + ".bin"), "wb") as f:
@@ -583,6 +744,10 @@ def convert(src_dir, out_root):
         f.write("%d triangles, %d emissive.\n" % (triangles, emissive))
         for line in notes.lines:
             f.write("- " + line + "\n")
+        if environment:
+            rel = lambda name: os.path.relpath(os.path.join(out_dir, name), REPOSITORY).replace(os.sep, "/")
+            f.write("Render it with its environment light:\n    build/mixtrace render %s --env %s\n"
+                    % (rel(scene_name + ".gltf"), rel(environment)))
     print("  %d triangles, %d emissive, %.2f MB" % (triangles, emissive, len(w.bin) / 1e6))
 
 
@@ -682,8 +847,65 @@ def check_ply_reader():
     print("PLY reader (ascii, binary_little_endian): ok")
 
 
+def check_environment_conversion():
+    """The quarter-turn roll against the two renderers' lookups, written out from their sources:
+    for many directions, SeeSharp's texel of a random map and mixtrace's texel of the converted
+    map are the same texel. And write_exr / read_exr give back the exact floats."""
+    rng = np.random.default_rng(7)
+    h, w = 8, 16
+    seesharp = rng.random((h, w, 3)).astype(np.float32)
+    ours = seesharp_env_to_mixtrace(seesharp)
+    d = rng.normal(size=(4000, 3))
+    d /= np.linalg.norm(d, axis=1)[:, None]
+    # SeeSharp 1.9.0, EnvironmentMap.WorldToSpherical / SphericalToPixel / EmittedRadiance.
+    phi = np.arctan2(d[:, 2], d[:, 0])
+    phi = np.where(phi < 0, phi + 2 * math.pi, phi)
+    theta = np.arctan2(np.sqrt(d[:, 0] ** 2 + d[:, 2] ** 2), d[:, 1])
+    s_col, s_row = phi / (2 * math.pi) * w, theta / math.pi * h
+    # mixtrace, shaders/shared/environment.h: u = atan2(x, -z) / 2 pi wrapped to [0, 1), v = acos(y) / pi.
+    u = np.arctan2(d[:, 0], -d[:, 2]) / (2 * math.pi)
+    u = u - np.floor(u)
+    m_col, m_row = u * w, np.arccos(np.clip(d[:, 1], -1, 1)) / math.pi * h
+    clear = (np.abs(s_col - np.round(s_col)) > 1e-6) & (np.abs(s_row - np.round(s_row)) > 1e-6)
+    a = seesharp[s_row.astype(int)[clear], s_col.astype(int)[clear]]
+    b = ours[m_row.astype(int)[clear] % h, m_col.astype(int)[clear] % w]
+    assert np.array_equal(a, b), "%d of %d directions read another texel" % ((a != b).any(axis=1).sum(), len(a))
+    # +X and +Z, as SeeSharp's own test places them: column 0 and W/4 there, W/4 and W/2 here.
+    assert np.array_equal(ours[h // 2, w // 4], seesharp[h // 2, 0])
+    assert np.array_equal(ours[h // 2, w // 2], seesharp[h // 2, w // 4])
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:
+        for img in (seesharp, np.zeros((40, 80, 3), np.float32),  # random: stored raw; zeros: compressed
+                    np.repeat(np.linspace(0, 5, 33 * 66, dtype=np.float32).reshape(33, 66, 1), 3, axis=2)):
+            path = os.path.join(tmp, "e.exr")
+            write_exr(path, img)
+            assert np.array_equal(read_exr(path), img), "EXR round trip of a %dx%d map" % img.shape[1::-1]
+    print("environment map: quarter-turn roll (%d directions), EXR round trip: ok" % clear.sum())
+
+
+def check_environment(scene_dir):
+    """An environment map named by the scene's NOTES.txt (`--env FILE`) exists and is a sane
+    equirectangular map of radiance: 2:1, finite, non-negative, not black."""
+    notes_path = os.path.join(scene_dir, "NOTES.txt")
+    if not os.path.isfile(notes_path):
+        return
+    with open(notes_path, "r", encoding="utf-8") as f:
+        named = [w for line in f for k, w in zip(line.split(), line.split()[1:]) if k == "--env"]
+    for name in named:
+        path = os.path.join(REPOSITORY, name)
+        assert os.path.isfile(path), "NOTES.txt names --env %s, which does not exist" % name
+        img = read_exr(path)
+        h, w, _ = img.shape
+        assert w == 2 * h, "%s: %dx%d is not an equirectangular map (2:1)" % (name, w, h)
+        assert np.all(np.isfinite(img)) and img.min() >= 0 and img.max() > 0, name + ": not finite, negative or black"
+        size = os.path.getsize(path)
+        assert size <= 1.5e6, "%s: %.2f MB" % (name, size / 1e6)
+        print("%s: %dx%d, mean radiance %.3f, %.2f MB: ok" % (name, w, h, img.mean(), size / 1e6))
+
+
 def check_all(root=HERE):
     check_ply_reader()
+    check_environment_conversion()
     scenes = sorted(d for d in os.listdir(root) if os.path.isfile(os.path.join(root, d, d + ".gltf")))
     if not scenes:
         print("no converted scenes found under " + root)
@@ -693,6 +915,7 @@ def check_all(root=HERE):
         try:
             check_scene(os.path.join(root, d, d + ".gltf"))
             assert os.path.isfile(os.path.join(root, d, "LICENSE.txt")), d + ": LICENSE.txt missing"
+            check_environment(os.path.join(root, d))
         except (AssertionError, KeyError, ValueError) as e:
             print("%s: FAILED: %s" % (d, e))
             failed += 1
