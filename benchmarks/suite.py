@@ -119,8 +119,9 @@ class Suite:
         stats = self.mx.render(scene, out, method, cfg or self.cfg, **kw)
         return out, stats
 
-    def ref(self, scene, cfg=None):
-        return reference(self.mx, scene, cfg or self.cfg, self.cfg["ref_spp"], self.args.cache)
+    def ref(self, scene, cfg=None, extra=()):
+        """The cached high-spp reference; `extra`: the scene's own options (an environment map)."""
+        return reference(self.mx, scene, cfg or self.cfg, self.cfg["ref_spp"], self.args.cache, extra)
 
     def scene(self, name):
         cfg, scene = self.cfg, self.scene_path(name)

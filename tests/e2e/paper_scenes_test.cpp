@@ -80,3 +80,47 @@ TEST_P(PaperScenes, UniformAndPowerSelectionAgree) {
 
 INSTANTIATE_TEST_SUITE_P(Converted, PaperScenes, ::testing::ValuesIn(paperScenes()),
                          [](const auto& info) { return fs::path(info.param).stem().string(); });
+
+// DiningRoom2's sky, scenes/paper/DiningRoom2/Skydome.exr (the source's environment map in
+// mixtrace's convention, written by convert_seesharp.py; the tests above render the scene without
+// it): the file is there and loads without a word; looking out of the window (in the +X wall,
+// x = 5.1, y 2 to 6.8) the sky is there between the blinds with it and black without it; and from
+// the paper's camera it adds light to the room (measured with the CPU backend, same paths: +7.6 %,
+// +8.1 %, +7.6 % of the image mean for seeds 1, 2, 3; the window view 0.42 against 0.0005).
+TEST(PaperSceneEnvironment, DiningRoom2SkyLightsTheRoom) {
+  const fs::path folder = fs::path(MIXTRACE_SOURCE_DIR) / "scenes" / "paper" / "DiningRoom2";
+  const std::string scene = (folder / "DiningRoom2.gltf").string();
+  const std::string sky = (folder / "Skydome.exr").string();
+  ASSERT_TRUE(fs::exists(sky)) << sky;
+  const fs::path dir = scratchDir("paper-sky");
+  auto mean = [](const Image& image) {
+    double sum = 0.0;
+    for (float v : image.rgb) sum += v;
+    return sum / double(image.rgb.size());
+  };
+  auto finite = [](const Image& image) {
+    return std::all_of(image.rgb.begin(), image.rgb.end(), [](float v) { return std::isfinite(v); });
+  };
+  const std::string window = " --look-from 3,4.3,-0.6 --look-at 10,4.3,-0.6 --up 0,1,0 --fov 30";
+  Image se;
+  Image out = render(scene + window + " --env " + sky, "pt-power", 1, "--width 32 --height 24 --spp 16",
+                     dir / "window-sky.exr", &se);
+  Image dark = render(scene + window + " --env none", "pt-power", 1, "--width 32 --height 24 --spp 16",
+                      dir / "window-none.exr", &se);
+  ASSERT_FALSE(out.rgb.empty());
+  ASSERT_FALSE(dark.rgb.empty());
+  EXPECT_TRUE(finite(out));
+  size_t skyPixels = 0;
+  for (size_t i = 0; i < out.pixelCount(); ++i)
+    if (out.rgb[3 * i] + out.rgb[3 * i + 1] + out.rgb[3 * i + 2] > 0.15f) ++skyPixels;
+  EXPECT_GT(double(skyPixels) / double(out.pixelCount()), 0.3) << skyPixels << " of " << out.pixelCount();
+  EXPECT_GT(mean(out), 0.2);
+  EXPECT_LT(mean(dark), 0.01);
+
+  Image lit = render(scene + " --env " + sky, "pt-power", 1, "--width 32 --height 24 --spp 64", dir / "room-sky.exr", &se);
+  Image lamps = render(scene + " --env none", "pt-power", 1, "--width 32 --height 24 --spp 64", dir / "room-none.exr", &se);
+  ASSERT_FALSE(lit.rgb.empty());
+  ASSERT_FALSE(lamps.rgb.empty());
+  EXPECT_TRUE(finite(lit));
+  EXPECT_GT(mean(lit), 1.03 * mean(lamps)) << mean(lit) << " against " << mean(lamps) << " with the lamps alone";
+}
