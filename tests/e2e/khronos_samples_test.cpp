@@ -1,6 +1,8 @@
 // Khronos glTF sample models (tests/data/khronos/, each with its licence), rendered by the real
 // binary: each test checks what its model exists to show.
+#include <cmath>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -60,6 +62,168 @@ TEST_P(SimpleSparseAccessor, TheSubstitutedVerticesShapeTheStrip) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, SimpleSparseAccessor, ::testing::Values("vulkan", "cpu"),
+                         [](const auto& info) { return std::string(info.param); });
+
+// TextureCoordinateTest: four unit quads facing -Z (x, y in [0.2, 1.2] or [-1.2, -0.2], z = 0) in
+// front of a grey plane, each reading one corner of the same 512x512 texture (U and V 0-0.4 or
+// 0.6-1, V = 0 the image's top row) through its own base colour factor. The texture is white but
+// for a chequered L at each corner and the labels "Top Left", "Top Right" (one line, texture rows
+// 53-71) and "Bottom / Left", "Bottom / Right" (two lines, rows 426-438 and 447-464). Read the
+// right way, each quad carries its own label, upright, at its outer corner; a renderer that flips
+// V shows the opposite corner's label upside down instead (on the top-left quad, "Bottom Left":
+// two lines at rows 52-86, so text below row 75 and a paler first line; on the bottom quads,
+// nothing on rows 426-438). Each quad is seen face on from z = -2 (the camera looks towards +Z,
+// so +X is on the image's left), 30 degrees: 1.07 units, 3.4 texture pixels a pixel, on 64x64.
+// Boxes are given in texture pixels and measured as the mean R+G+B of the pixels whose centres
+// fall in them, over the same sum on a plain white stretch of the quad (the box's coverage by
+// ink, inverted): a box holding a label line measures 0.55-0.8 (its ink covers 20-40%), a blank
+// one 0.98-1.04 at 16 spp, and a V-flipped texture moves the label rows to 0.87-1.04 and the
+// blank ones to 0.73-0.82. The plain stretch's colour is the quad's factor: the material is the
+// default metallic 1, roughness 1, so its colour is the base colour (texture white x factor)
+// times one grey albedo. The file has no lights: a uniform white environment lights it.
+class TextureCoordinateTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(TextureCoordinateTest, EachQuadShowsItsOwnLabelUprightInItsOwnColour) {
+  struct Box {
+    const char* what;
+    double col0, col1, row0, row1;   // texture pixels, inclusive
+    bool inked;                      // holds a label line (else blank)
+  };
+  struct Quad {
+    const char* name;
+    double x0, y0;            // the quad spans [x0, x0 + 1] x [y0, y0 + 1]
+    double u0, v0;            // its UVs span [u0, u0 + 0.4] x [v0, v0 + 0.4], U growing towards -X, V towards -Y
+    glm::vec3 factor;         // its base colour factor
+    Box plain;                // white texture: the reference
+    std::vector<Box> boxes;
+  };
+  const std::vector<Quad> quads = {
+      {"TopLeft", 0.2, 0.2, 0.0, 0.0, {1.0f, 1.0f, 0.0f}, {"plain", 50, 150, 100, 160, false},
+       {{"the label \"Top Left\"", 44, 115, 54, 71, true}, {"below the label", 44, 115, 76, 90, false}}},
+      {"TopRight", -1.2, 0.2, 0.6, 0.0, {1.0f, 0.1f, 0.0f}, {"plain", 360, 460, 100, 160, false},
+       {{"the label \"Top Right\"", 381, 465, 53, 70, true}, {"below the label", 381, 465, 76, 90, false}}},
+      {"BottomLeft", 0.2, -1.2, 0.0, 0.6, {0.0f, 0.2f, 1.0f}, {"plain", 50, 150, 350, 395, false},
+       {{"the label's line \"Bottom\"", 44, 105, 426, 438, true},
+        {"the label's line \"Left\"", 44, 105, 447, 460, true},
+        {"above the label", 44, 115, 400, 420, false}}},
+      {"BottomRight", -1.2, -1.2, 0.6, 0.6, {0.0f, 1.0f, 0.0f}, {"plain", 360, 460, 350, 395, false},
+       {{"the label's line \"Bottom\"", 405, 468, 426, 438, true},
+        {"the label's line \"Right\"", 405, 468, 447, 464, true},
+        {"above the label", 381, 468, 400, 420, false}}},
+  };
+  const fs::path dir = scratchDir("khronos-texcoord");
+  const int size = 64;
+  const double half = 2.0 * std::tan(15.0 * 3.14159265358979323846 / 180.0);   // half the view at z = 0
+  for (const Quad& q : quads) {
+    SCOPED_TRACE(q.name);
+    const double cx = q.x0 + 0.5, cy = q.y0 + 0.5;
+    std::ostringstream camera;
+    camera << " --look-from " << cx << "," << cy << ",-2 --look-at " << cx << "," << cy << ",0";
+    const fs::path out = dir / (std::string(q.name) + ".exr");
+    const RunResult r = runMixtrace("render " + sample("TextureCoordinateTest").string() + camera.str() +
+                                    " --fov 30 --width 64 --height 64 --spp 16 --max-depth 2 --no-png -q --backend " +
+                                    GetParam() + " --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+    const Image img = readExr(out.string());
+    // The mean colour of the pixels whose centres map inside a box of texture pixels.
+    auto meanIn = [&](const Box& b) {
+      glm::dvec3 sum(0.0);
+      int n = 0;
+      for (int y = 0; y < size; ++y) {
+        const double wy = cy + half - (y + 0.5) * 2.0 * half / size;
+        const double row = q.v0 * 512.0 + (q.y0 + 1.0 - wy) * 204.8;
+        if (row < b.row0 || row > b.row1) continue;
+        for (int x = 0; x < size; ++x) {
+          const double wx = cx + half - (x + 0.5) * 2.0 * half / size;   // image right is -X
+          const double col = q.u0 * 512.0 + (q.x0 + 1.0 - wx) * 204.8;
+          if (col < b.col0 || col > b.col1) continue;
+          const size_t p = 3 * (size_t(y) * size + x);
+          sum += glm::dvec3(img.rgb[p], img.rgb[p + 1], img.rgb[p + 2]);
+          ++n;
+        }
+      }
+      EXPECT_GT(n, 40) << b.what;
+      return n > 0 ? sum / double(n) : sum;
+    };
+    const glm::dvec3 plain = meanIn(q.plain);
+    const double plainSum = plain.x + plain.y + plain.z;
+    ASSERT_GT(plainSum, 0.05);
+    const glm::dvec3 factor(q.factor);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(plain[c] / plainSum, factor[c] / (factor.x + factor.y + factor.z), 0.03)
+          << "channel " << c << " of the quad's colour";
+    for (const Box& b : q.boxes) {
+      const glm::dvec3 m = meanIn(b);
+      const double ratio = (m.x + m.y + m.z) / plainSum;
+      if (b.inked) EXPECT_LT(ratio, 0.85) << b.what << " is not where the label must land (V flipped?)";
+      else EXPECT_GT(ratio, 0.9) << b.what << " should be blank (V flipped?)";
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, TextureCoordinateTest, ::testing::Values("vulkan", "cpu"),
+                         [](const auto& info) { return std::string(info.param); });
+
+// BoxVertexColors: a unit cube (+-0.5) whose corners carry different COLOR_0 values multiplying
+// a grey base colour (0.8; metallic 0.1, roughness 0.99). Its +Z face, seen face on from z = 3
+// (30 degrees: 1.34 units at z = 0.5 on 48x48 pixels), is split along the diagonal from (-0.5,
+// -0.5) to (0.5, 0.5) into the triangles (top right, bottom left, bottom right) and (top left,
+// bottom left, top right); the corners' colours (linear, as the file stores them): top right
+// red (1.0, 0.001, 0.025), top left yellow-green (0.511, 1, 0), bottom left grey (0.804 each),
+// bottom right blue (0.003, 0.131, 0.999). At a point 80% of the way to a corner the colour is
+// the barycentric blend of the triangle's three corners (0.8 of that corner, 0.1 of each other),
+// and a diffuse-dominated surface under a uniform white environment shows it in proportion: the
+// chromaticity of a 3x3 block there matches the blend's within 0.04 (the small specular part,
+// the same for all channels, pulls it towards grey by up to 0.025). A renderer that ignores
+// COLOR_0 shows grey (1/3 each) everywhere; one that read the alpha (0 at the red and blue
+// corners) as coverage of this OPAQUE material would show the white environment through them.
+class BoxVertexColors : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(BoxVertexColors, CornerColoursBlendAcrossTheFace) {
+  const fs::path dir = scratchDir("khronos-boxvertexcolors");
+  const fs::path out = dir / "box.exr";
+  const int size = 48;
+  const RunResult r = runMixtrace("render " + sample("BoxVertexColors").string() +
+                                  " --look-from 0,0,3 --look-at 0,0,0 --fov 30 --width 48 --height 48 --spp 16 "
+                                  "--max-depth 2 --no-png -q --backend " + GetParam() + " --out " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  const Image img = readExr(out.string());
+  const glm::dvec3 topRight(0.9997, 0.0012, 0.0247), topLeft(0.5109, 1.0, 0.0), bottomLeft(0.8039),
+      bottomRight(0.0025, 0.1314, 0.9994);
+  // The vertex colour the face interpolates at (x, y) on z = 0.5.
+  auto blend = [&](double x, double y) {
+    if (x > y) {   // triangle (top right, bottom left, bottom right)
+      const double a = y + 0.5, c = x - y;
+      return a * topRight + (1.0 - a - c) * bottomLeft + c * bottomRight;
+    }
+    const double t = y - x, rr = x + 0.5;   // triangle (top left, bottom left, top right)
+    return t * topLeft + (1.0 - t - rr) * bottomLeft + rr * topRight;
+  };
+  const double half = 2.5 * std::tan(15.0 * 3.14159265358979323846 / 180.0);
+  const struct {
+    const char* near;
+    double x, y;
+  } points[] = {{"top right (red)", 0.4, 0.3},
+                {"top left (yellow-green)", -0.3, 0.4},
+                {"bottom left (grey)", -0.4, -0.3},
+                {"bottom right (blue)", 0.3, -0.4}};
+  for (const auto& p : points) {
+    const int px = int((p.x + half) / (2.0 * half) * size), py = int((half - p.y) / (2.0 * half) * size);
+    glm::dvec3 sum(0.0);
+    for (int y = py - 1; y <= py + 1; ++y)
+      for (int x = px - 1; x <= px + 1; ++x) {
+        const size_t i = 3 * (size_t(y) * size + x);
+        sum += glm::dvec3(img.rgb[i], img.rgb[i + 1], img.rgb[i + 2]);
+      }
+    const glm::dvec3 expected = blend(p.x, p.y);
+    const double gotTotal = sum.x + sum.y + sum.z, expectedTotal = expected.x + expected.y + expected.z;
+    ASSERT_GT(gotTotal, 0.0) << p.near;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(sum[c] / gotTotal, expected[c] / expectedTotal, 0.04) << "near the " << p.near << " corner, channel " << c;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, BoxVertexColors, ::testing::Values("vulkan", "cpu"),
                          [](const auto& info) { return std::string(info.param); });
 
 }  // namespace
