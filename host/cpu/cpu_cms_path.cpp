@@ -7,6 +7,7 @@
 #include "shared/ray_offset.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
+#include "shared/scatter_side.h"
 
 namespace mixtrace {
 namespace {
@@ -31,6 +32,7 @@ struct Vertex {
   OrthonormalBasis frame;
   vec3 wo;       // towards the previous vertex, in the shading frame
   vec3 next;     // the offset origin of the rays leaving the vertex
+  vec3 nextBelow;   // the same on the far side, for transmitted rays (= next when opaque)
   vec3 beta;     // the path throughput up to the vertex
   uint cell;     // the vertex's cell (kNoCell: none)
   bool cv;       // the cell pays a control variate
@@ -79,13 +81,15 @@ class CmsPath {
       v.bsdf = surfaceBsdf(sh);
       v.frame = makeOrthonormalBasis(sh.shadingNormal);
       v.wo = toLocal(v.frame, -direction);
-      v.next = offsetRayOrigin(sh.position, hitPointError(hit.triangle, hit.u, hit.v), sh.geometricNormal);
+      const vec3 pointError = hitPointError(hit.triangle, hit.u, hit.v);
+      v.next = offsetRayOrigin(sh.position, pointError, sh.geometricNormal);
+      v.nextBelow = bsdfTransmits(v.bsdf) ? offsetRayOrigin(sh.position, pointError, -sh.geometricNormal) : v.next;
       v.beta = beta;
       enterCell(v);
       sampleLight(v, rng);
       vec3 wiWorld;
       if (!sampleBsdf(v, rng, pending, beta, wiWorld)) break;
-      origin = v.next;
+      origin = originTowards(wiWorld, v.sh.geometricNormal, v.next, v.nextBelow);
       direction = wiWorld;
     }
     return radiance_;
@@ -144,7 +148,8 @@ class CmsPath {
     const bool cmsTerms = v.cell != kNoCell;
     if (!(ls.pdf > 0.0f || cmsTerms)) return;
     vec3 wi = toLocal(v.frame, ls.direction);
-    const bool reachable = lightPointReachable(ck, v.sh.geometricNormal, carries, pk, ls);
+    const bool reachable =
+        lightPointReachable(ck, v.sh.geometricNormal, wi.z, bsdfTransmits(v.bsdf), carries, pk, ls);
     float pB;
     vec3 f = lightSampleIntegrand(v.bsdf, v.wo, wi, ls, reachable, pB);
     float peff = lightSampleMixtureDensity(ls.pdf, pB);
@@ -155,8 +160,9 @@ class CmsPath {
     if (reachable) {   // the shadow ray (shadow.comp)
       vec3 shadowDirection;
       float shadowLength;
-      shadowRay(v.next, ls, shadowDirection, shadowLength);
-      visible = !traceAny(v.next, shadowDirection, shadowLength);
+      const vec3 from = originTowards(ls.direction, v.sh.geometricNormal, v.next, v.nextBelow);
+      shadowRay(from, ls, shadowDirection, shadowLength);
+      visible = !traceAny(from, shadowDirection, shadowLength);
     }
     if (visible) radiance_ += contribution;
     // Whether the BSDF could have sampled this point depends on its visibility: a hidden point
@@ -187,8 +193,8 @@ class CmsPath {
     float pdf = 0.0f;
     bool sampled = bsdfSample(v.bsdf, v.wo, uDirection, uLobe, wiLocal, pdf) && pdf > 0.0f;
     wiWorld = toWorld(v.frame, wiLocal);
-    if (!sampled || !(dot(wiWorld, v.sh.geometricNormal) > 0.0f)) {
-      // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
+    if (!sampled || !leavesOnShadingSide(wiWorld, v.sh.geometricNormal, wiLocal.z)) {
+      // A failed sample, or one on the wrong side of the geometric surface, is still a sample with f = 0 that hits no light
       // (docs/estimator.md §1): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
       if (v.cv)
         radiance_ -= controlVariateTerm(v.beta, v.cell, L_, kNoCell, 0.0f, kFailedBsdfSamplePdf, kFailedBsdfSamplePdf);

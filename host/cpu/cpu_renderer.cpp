@@ -10,6 +10,7 @@
 #include "shared/first_hit_aov.h"   // after the kernel access: it reads the scene through its macros
 #include "util/error.h"
 #include "shared/bsdf.h"
+#include "shared/scatter_side.h"
 #include "shared/camera.h"
 #include "shared/ray_offset.h"
 #include "shared/rng.h"
@@ -57,7 +58,9 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
     BsdfParams bsdf = surfaceBsdf(sh);
     OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
     vec3 wo = toLocal(frame, -direction);
-    vec3 next = offsetRayOrigin(sh.position, hitPointError(hit.triangle, hit.u, hit.v), sh.geometricNormal);
+    const vec3 pointError = hitPointError(hit.triangle, hit.u, hit.v);
+    const vec3 next = offsetRayOrigin(sh.position, pointError, sh.geometricNormal);
+    const vec3 nextBelow = bsdfTransmits(bsdf) ? offsetRayOrigin(sh.position, pointError, -sh.geometricNormal) : next;
 
     float uLight = rngNextFloat(rng);
     float uEmitter = rngNextFloat(rng);
@@ -69,7 +72,7 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
     LightSample ls;
     // Chosen at the rays' origin `next` and the geometric normal, as the MIS weight above has them.
     if (lightCount > 0 && sampleLightAt(sh.position, next, sh.geometricNormal, lightCount, uLight, uEmitter, uPoint, ls) &&
-        dot(ls.direction, sh.geometricNormal) > 0.0f) {
+        lightSideReachable(ls.direction, sh.geometricNormal, toLocal(frame, ls.direction).z, bsdfTransmits(bsdf))) {
       vec3 wi = toLocal(frame, ls.direction);
       vec3 f = bsdfEval(bsdf, wo, wi) * std::abs(wi.z);
       float weight = ls.isDelta ? 1.0f : ls.pdf / (ls.pdf + bsdfPdf(bsdf, wo, wi));
@@ -78,8 +81,9 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
         ++counters.shadowRays;
         vec3 shadowDirection;
         float shadowLength;
-        shadowRay(next, ls, shadowDirection, shadowLength);
-        if (!traceAny(next, shadowDirection, shadowLength)) radiance += contribution;
+        const vec3 from = originTowards(ls.direction, sh.geometricNormal, next, nextBelow);
+        shadowRay(from, ls, shadowDirection, shadowLength);
+        if (!traceAny(from, shadowDirection, shadowLength)) radiance += contribution;
       }
     }
 
@@ -91,13 +95,13 @@ glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32
     float pdf;
     if (!bsdfSample(bsdf, wo, uDirection, uLobe, wiLocal, pdf) || !(pdf > 0.0f)) break;
     vec3 wiWorld = toWorld(frame, wiLocal);
-    if (!(dot(wiWorld, sh.geometricNormal) > 0.0f)) break;
+    if (!leavesOnShadingSide(wiWorld, sh.geometricNormal, wiLocal.z)) break;
     vec3 weight = bsdfEval(bsdf, wo, wiLocal) * (std::abs(wiLocal.z) / pdf);
     if (isBlack(weight)) break;
     throughput *= weight;
     previousBsdfPdf = pdf;
     previousNormal = sh.geometricNormal;
-    origin = next;
+    origin = originTowards(wiWorld, sh.geometricNormal, next, nextBelow);
     direction = wiWorld;
   }
   return radiance;

@@ -17,6 +17,7 @@
 #include <tiny_gltf.h>
 
 #include "scene/scene.h"
+#include "shared/constants.h"
 
 namespace mixtrace {
 namespace gltf {
@@ -208,6 +209,19 @@ class MaterialTable {
   std::vector<int> textureSlots_;   // glTF texture -> scene texture; -1 not yet, -2 unusable
   std::vector<std::optional<UvMapping>> uvMappings_;   // per glTF material, once asked for
 };
+
+// --- gltf_glass.cpp
+// A material's extension object `name`, or null.
+const tinygltf::Value* materialExtension(const tinygltf::Material& material, const char* name);
+// KHR_materials_transmission's transmissionTexture as a texture reference (index -1: none).
+tinygltf::TextureInfo transmissionTextureInfo(const tinygltf::Material& material);
+struct GlassParameters {
+  float ior = shared::kDefaultIor;   // KHR_materials_ior
+  float transmission = 0.0f;         // KHR_materials_transmission's factor
+  bool volumetric = false;           // KHR_materials_volume thicknessFactor > 0; thin-walled otherwise
+};
+// The material's glass extensions, with a warning for each value that is not usable.
+GlassParameters readGlass(const LoadContext& ctx, const tinygltf::Material& material, int materialIndex);
 
 // --- gltf_textures.cpp
 // Decodes image `imageIndex` (PNG/JPEG/... through tinygltf's stb_image) into texture's size and

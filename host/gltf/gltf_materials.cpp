@@ -48,6 +48,10 @@ MaterialGpu defaultMaterial() {
   m.alphaCutoff = 0.5f;
   m.normalTexture = -1;
   m.normalScale = 1.0f;
+  m.transmission = 0.0f;
+  m.transmissionTexture = -1;
+  m.ior = shared::kDefaultIor;
+  m.padMaterial = 0u;
   return m;
 }
 
@@ -116,10 +120,12 @@ UvMapping MaterialTable::uvMappingFor(int gltfMaterial) {
   const std::string where = "material " + std::to_string(gltfMaterial);
   // The textures the renderer reads, the base colour's first: it serves all where they disagree.
   const tinygltf::TextureInfo normal = asTextureInfo(src.normalTexture);
+  const tinygltf::TextureInfo transmission = transmissionTextureInfo(src);
   const std::pair<const tinygltf::TextureInfo*, const char*> textures[] = {
       {&src.pbrMetallicRoughness.baseColorTexture, "baseColorTexture"},
       {&src.pbrMetallicRoughness.metallicRoughnessTexture, "metallicRoughnessTexture"},
-      {&src.emissiveTexture, "emissiveTexture"}, {&normal, "normalTexture"}};
+      {&src.emissiveTexture, "emissiveTexture"}, {&normal, "normalTexture"},
+      {&transmission, "transmissionTexture"}};
   UvMapping chosen;
   const char* chosenSlot = nullptr;
   for (const auto& [info, slot] : textures) {
@@ -182,6 +188,12 @@ uint32_t MaterialTable::materialFor(int gltfMaterial) {
     else ctx_.warning("material " + std::to_string(gltfMaterial) + " has an invalid normalTexture scale; using 1");
   }
   m.flags = src.doubleSided ? shared::kMaterialDoubleSided : 0u;
+  const GlassParameters glass = readGlass(ctx_, src, gltfMaterial);
+  m.ior = glass.ior;
+  m.transmission = glass.transmission;
+  if (glass.volumetric) m.flags |= shared::kMaterialVolumetric;
+  if (m.transmission > 0.0f)
+    m.transmissionTexture = textureFor(transmissionTextureInfo(src), gltfMaterial, "transmissionTexture");
   if (src.alphaMode == "MASK" || src.alphaMode == "BLEND") {
     const bool emissive = m.emission != glm::vec3(0.0f);
     if (emissive) {

@@ -33,8 +33,10 @@ namespace {
 // The extensions whose meaning the renderer implements; anything else is ignored when optional
 // and refused when required.
 const std::set<std::string>& supportedExtensions() {
-  static const std::set<std::string> kSupported = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                                     "KHR_mesh_quantization", "KHR_texture_transform"};
+  static const std::set<std::string> kSupported = {
+      "KHR_lights_punctual",        "KHR_materials_emissive_strength", "KHR_materials_ior",
+      "KHR_materials_transmission", "KHR_materials_volume",            "KHR_mesh_quantization",
+      "KHR_texture_transform"};
   return kSupported;
 }
 

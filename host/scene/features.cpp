@@ -1,6 +1,7 @@
 #include "scene/features.h"
 
 #include "shared/bindings.h"
+#include "shared/constants.h"
 
 namespace mixtrace {
 
@@ -15,6 +16,7 @@ std::vector<uint32_t> FeatureSet::specialization() const {
   v[SPEC_HAS_VERTEX_COLORS] = vertexColors;
   v[SPEC_HAS_ALPHA] = alpha;
   v[SPEC_HAS_NORMAL_MAPS] = normalMaps;
+  v[SPEC_HAS_TRANSMISSION] = transmission;
   return v;
 }
 
@@ -22,7 +24,8 @@ std::string FeatureSet::describe() const {
   auto b = [](bool x) { return x ? "1" : "0"; };
   return std::string("textures=") + b(textures) + " area-lights=" + b(areaLights) + " punctual-lights=" +
          b(punctualLights) + " metals=" + b(metals) + " single-light=" + b(singleLight) +
-         " environment=" + b(environment) + " vertex-colors=" + b(vertexColors) + " alpha=" + b(alpha) + " normal-maps=" + b(normalMaps);
+         " environment=" + b(environment) + " vertex-colors=" + b(vertexColors) + " alpha=" + b(alpha) + " normal-maps=" + b(normalMaps) +
+         " transmission=" + b(transmission);
 }
 
 FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
@@ -31,12 +34,15 @@ FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
   f.metals = false;
   f.alpha = false;
   f.normalMaps = false;
+  f.transmission = false;
   for (const MaterialGpu& m : scene.materials) {
     f.textures |= m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0 ||
-                  m.normalTexture >= 0;
+                  m.normalTexture >= 0 || m.transmissionTexture >= 0;
     f.metals |= m.metallic > 0.0f || m.metallicRoughnessTexture >= 0;
     f.alpha |= (m.flags & (shared::kMaterialAlphaMask | shared::kMaterialAlphaBlend)) != 0u;
     f.normalMaps |= m.normalTexture >= 0;
+    // An IOR other than the default changes F0 only, but that is read in the same place.
+    f.transmission |= m.transmission > 0.0f || m.ior != shared::kDefaultIor;
   }
   f.areaLights = lights.hasArea();
   f.punctualLights = lights.hasPunctual();

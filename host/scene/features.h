@@ -20,6 +20,7 @@ struct FeatureSet {
   bool vertexColors = true;
   bool alpha = true;
   bool normalMaps = true;
+  bool transmission = true;
 
   // Everything on: the fully general pipelines (--general-pipelines).
   static FeatureSet general() { return FeatureSet{}; }

@@ -59,6 +59,7 @@
 #define HAS_VERTEX_COLORS (SHARED_SCENE.features.vertexColors)
 #define HAS_ALPHA (SHARED_SCENE.features.alpha)
 #define HAS_NORMAL_MAPS (SHARED_SCENE.features.normalMaps)
+#define HAS_TRANSMISSION (SHARED_SCENE.features.transmission)
 
 #include "shared/alpha.h"
 #define BVH_ALPHA_PASSES(i, u, v, origin, direction) alphaPassesThrough(i, u, v, origin, direction)

@@ -25,6 +25,7 @@ layout(constant_id = SPEC_HAS_ENVIRONMENT) const bool HAS_ENVIRONMENT = true;
 layout(constant_id = SPEC_HAS_VERTEX_COLORS) const bool HAS_VERTEX_COLORS = true;
 layout(constant_id = SPEC_HAS_ALPHA) const bool HAS_ALPHA = true;
 layout(constant_id = SPEC_HAS_NORMAL_MAPS) const bool HAS_NORMAL_MAPS = true;
+layout(constant_id = SPEC_HAS_TRANSMISSION) const bool HAS_TRANSMISSION = true;
 
 #ifdef PASS_CONSTANTS
 layout(push_constant, scalar) uniform Push { PASS_CONSTANTS pc; };

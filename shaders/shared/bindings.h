@@ -24,6 +24,7 @@
 #define SPEC_HAS_VERTEX_COLORS 10     // COLOR_0 on some triangle (shared/vertex_color.h)
 #define SPEC_HAS_ALPHA 11             // alphaMode MASK or BLEND on some material (shared/alpha.h)
 #define SPEC_HAS_NORMAL_MAPS 12       // a material with a normalTexture (shared/surface.h)
-#define SPEC_COUNT 13
+#define SPEC_HAS_TRANSMISSION 13      // a material with KHR_materials_transmission (shared/dielectric.h)
+#define SPEC_COUNT 14
 
 #endif

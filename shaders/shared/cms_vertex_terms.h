@@ -28,6 +28,7 @@
 #include "shared/lights.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
+#include "shared/scatter_side.h"
 SHARED_BEGIN_WITH_BUFFERS
 
 // ---- Densities (docs/estimator.md §1, §2) ----
@@ -60,15 +61,17 @@ SHARED_FN bool sampleClusterLight(uint cell, uint L, vec3 position, vec3 selectF
 }
 
 // Whether the BSDF at a vertex with geometric normal n could have sampled the light sample's
-// point, i.e. whether it is not hidden (§1). Hidden: below the surface, emitting nothing towards
+// point, i.e. whether it is not hidden (§1). Hidden: below the surface (unless the BSDF transmits;
+// wiLocalZ is the direction's z in the shading frame, scatter_side.h), emitting nothing towards
 // the vertex (`carries` false: a one-sided emitter's back, a spot's outside) whatever lies between,
 // or without solid-angle density from the vertex (in its plane, e.g. a light sampling itself).
 // The BSDF sample treats such a hit as no light either (clusterOfBsdfHit), so each technique's
 // density stays the density of its own samples. A point without density takes, with clusters,
 // p_k = 1 and light density c_k: p_k is in the light's own area measure and the terms only need
 // ratios, so any positive p_k does. (Without clusters, a sample without density is not used.)
-SHARED_FN bool lightPointReachable(float ck, vec3 n, bool carries, INOUT(float) pk, INOUT(LightSample) ls) {
-  bool above = dot(ls.direction, n) > 0.0f;
+SHARED_FN bool lightPointReachable(float ck, vec3 n, float wiLocalZ, bool transmits, bool carries, INOUT(float) pk,
+                                   INOUT(LightSample) ls) {
+  bool above = lightSideReachable(ls.direction, n, wiLocalZ, transmits);
   if (!(ls.pdf > 0.0f)) {
     above = false;
     carries = false;

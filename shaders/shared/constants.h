@@ -13,5 +13,11 @@ const float kFloatMax = 3.402823466e+38f;
 // treat specially, and near-mirror (alpha 0.002) already spans the dynamic range of float pdfs.
 const float kMinAlpha = 0.002f;
 
+// glTF's default index of refraction (KHR_materials_ior), whose F0 is the core specification's 0.04.
+const float kDefaultIor = 1.5f;
+// A volumetric glass's IOR is kept at least this far above 1: at exactly 1 the rough refraction
+// collapses to a delta (wi = -wo) that no density describes.
+const float kMinVolumeIor = 1.01f;
+
 SHARED_END
 #endif

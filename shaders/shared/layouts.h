@@ -60,6 +60,7 @@ struct TriangleShading {
 const uint kMaterialDoubleSided = 1u;
 const uint kMaterialAlphaMask = 2u;    // alphaMode MASK: cut where alpha < alphaCutoff (shared/alpha.h)
 const uint kMaterialAlphaBlend = 4u;   // alphaMode BLEND: stochastic transparency
+const uint kMaterialVolumetric = 8u;   // KHR_materials_volume thickness > 0: glass bends light (dielectric.h)
 
 // glTF metallic-roughness material; textures are -1 when absent.
 struct MaterialGpu {
@@ -70,11 +71,15 @@ struct MaterialGpu {
   int baseColorTexture;
   int metallicRoughnessTexture;
   int emissiveTexture;
-  uint flags;          // kMaterialDoubleSided, kMaterialAlphaMask, kMaterialAlphaBlend
+  uint flags;          // kMaterialDoubleSided, kMaterialAlphaMask, kMaterialAlphaBlend, kMaterialVolumetric
   float alpha;         // baseColorFactor's alpha (read only under MASK or BLEND)
   float alphaCutoff;   // MASK's threshold
   int normalTexture;   // -1: none (shared/surface.h perturbs the shading normal with it)
   float normalScale;   // normalTexture.scale: multiplies the map's x and y
+  float transmission;  // KHR_materials_transmission's transmissionFactor (0: opaque)
+  int transmissionTexture;   // -1: none; its red channel multiplies transmission
+  float ior;           // KHR_materials_ior (1.5 without it)
+  uint padMaterial;
 };
 
 // glTF sampler wrap modes.

@@ -19,6 +19,7 @@ struct SurfaceHit {
   vec2 uv;
   uint material;
   vec4 vertexColor;      // COLOR_0 (white without it): multiplies the base colour and its alpha
+  bool fromInside;       // the ray hit the back face (for volumetric glass: it leaves the volume)
 };
 
 // The shading normal n (unit, the file's side) perturbed by the material's normal map: the map's
@@ -53,6 +54,7 @@ SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDir
   vec3 ng = triangleGeometricNormal(g);   // normalize(cross) underflows for tiny triangles
   bool front = dot(ng, incomingDirection) < 0.0f;
   h.geometricNormal = front ? ng : -ng;
+  h.fromInside = !front;
   vec3 ns = (1.0f - u - v) * s.n0 + u * s.n1 + v * s.n2;
   float len = length(ns);
   ns = len > 0.0f ? ns / len : ng;
@@ -85,7 +87,14 @@ SHARED_FN BsdfParams surfaceBsdf(SurfaceHit h) {
       metallic = HAS_METALS ? metallic * t.z : 0.0f;
     }
   }
-  return makeBsdfParams(baseColor, metallic, roughness);
+  BsdfParams p = makeBsdfParams(baseColor, metallic, roughness);
+  if (HAS_TRANSMISSION && (m.transmission > 0.0f || m.ior != kDefaultIor)) {
+    float transmission = m.transmission;
+    if (HAS_TEXTURES && m.transmissionTexture >= 0)
+      transmission = transmission * sampleTexture(m.transmissionTexture, h.uv, false).x;
+    p = withTransmission(p, transmission, m.ior, (m.flags & kMaterialVolumetric) == 0u, h.fromInside);
+  }
+  return p;
 }
 
 SHARED_END_WITH_BUFFERS

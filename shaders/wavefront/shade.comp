@@ -29,6 +29,7 @@
 #include "shared/ray_offset.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
+#include "shared/scatter_side.h"
 #include "shared/surface.h"
 
 layout(local_size_x = kWorkgroupSize) in;
@@ -41,6 +42,7 @@ struct Vertex {
   OrthonormalBasis frame;
   vec3 wo;       // towards the previous vertex, in the shading frame
   vec3 origin;   // the offset origin of the rays leaving the vertex
+  vec3 originBelow;   // the same on the far side, for transmitted rays (= origin when opaque)
   vec3 beta;     // the path throughput up to the vertex
   uint cell;     // CMS: the vertex's cell (kNoCell: none, or no CMS)
   bool cv;       // CMS: the cell pays a control variate
@@ -152,7 +154,7 @@ void queueLightSample(Vertex v, INOUT(uint) rng) {
   bool cmsTerms = CMS_SELECTION && v.cell != kNoCell;
   if (!(ls.pdf > 0.0 || cmsTerms)) return;
   vec3 wi = toLocal(v.frame, ls.direction);
-  bool reachable = lightPointReachable(ck, v.sh.geometricNormal, carries, pk, ls);
+  bool reachable = lightPointReachable(ck, v.sh.geometricNormal, wi.z, bsdfTransmits(v.bsdf), carries, pk, ls);
   float pB;
   vec3 f = lightSampleIntegrand(v.bsdf, v.wo, wi, ls, reachable, pB);
   float peff = lightSampleMixtureDensity(ls.pdf, pB);
@@ -163,8 +165,8 @@ void queueLightSample(Vertex v, INOUT(uint) rng) {
   } else if (!isBlack(contribution) || cmsTerms) {
     // (A hidden point with the per-triangle control variate: queued untraced, kShadowRayHidden.)
     ShadowRay s;
-    s.origin = v.origin;
-    shadowRay(v.origin, ls, s.direction, s.tMax);
+    s.origin = originTowards(ls.direction, v.sh.geometricNormal, v.origin, v.originBelow);
+    shadowRay(s.origin, ls, s.direction, s.tMax);
     s.path = v.path;
     s.contribution = contribution;
     s.cell = v.cell;
@@ -193,8 +195,8 @@ void sampleBsdf(Vertex v, INOUT(uint) rng) {
   rngState[v.path] = rng;
   bool sampled = bsdfSample(v.bsdf, v.wo, uDir, uLobe, wiLocal, pdf) && pdf > 0.0;
   vec3 wiWorld = toWorld(v.frame, wiLocal);
-  if (!sampled || !(dot(wiWorld, v.sh.geometricNormal) > 0.0)) {
-    // A failed sample, or one into the surface, is still a sample with f = 0 that hits no light
+  if (!sampled || !leavesOnShadingSide(wiWorld, v.sh.geometricNormal, wiLocal.z)) {
+    // A failed sample, or one on the wrong side of the geometric surface, is still a sample with f = 0 that hits no light
     // (docs/estimator.md §1): g / p_eff = alpha_B, and it adds p_B^2 / p_eff^2 = 1 to A_BB.
     uint L = pc.clusterCount;
     if (v.cv)
@@ -211,7 +213,7 @@ void sampleBsdf(Vertex v, INOUT(uint) rng) {
   if (!CMS_SELECTION && isBlack(weight)) return;
   throughput[v.path] = v.beta * weight;
   misPdf[v.path] = pdf;
-  rayOrigin[v.path] = v.origin;
+  rayOrigin[v.path] = originTowards(wiWorld, v.sh.geometricNormal, v.origin, v.originBelow);
   rayDirection[v.path] = wiWorld;
   if (LIGHT_SELECT_BVH) misNormal[v.path] = v.sh.geometricNormal;
   if (CMS_SELECTION) {
@@ -261,7 +263,9 @@ void main() {
   v.bsdf = surfaceBsdf(sh);
   v.frame = makeOrthonormalBasis(sh.shadingNormal);
   v.wo = toLocal(v.frame, -dir);
-  v.origin = offsetRayOrigin(sh.position, hitPointError(hit.triangle, hit.u, hit.v), sh.geometricNormal);
+  vec3 pointError = hitPointError(hit.triangle, hit.u, hit.v);
+  v.origin = offsetRayOrigin(sh.position, pointError, sh.geometricNormal);
+  v.originBelow = bsdfTransmits(v.bsdf) ? offsetRayOrigin(sh.position, pointError, -sh.geometricNormal) : v.origin;
   v.beta = beta;
   v.cell = kNoCell;
   v.cv = false;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,9 @@ struct MaterialSpec {
   const char* alphaMode = "OPAQUE";  // glTF alphaMode; alpha is baseColorFactor's fourth component
   float alpha = 1.0f;
   float alphaCutoff = 0.5f;
+  float transmission = 0.0f;  // KHR_materials_transmission's factor (written when > 0)
+  float ior = 1.5f;           // KHR_materials_ior (written when not 1.5)
+  bool volumetric = false;    // KHR_materials_volume with thicknessFactor 1 (thin-walled without)
 };
 
 // Pinhole camera: looks from `position` at `target`, `up` roughly up, vertical field of view.
@@ -66,10 +70,17 @@ class GltfWriter {
       const glm::vec3 c = m.emission / peak;
       mat["emissiveFactor"] = {c.x, c.y, c.z};
       mat["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", peak}}}};
-      usesEmissiveStrength_ = true;
+      extensionsUsed_.insert("KHR_materials_emissive_strength");
     } else if (peak > 0.0f) {
       mat["emissiveFactor"] = {m.emission.x, m.emission.y, m.emission.z};
     }
+    auto extension = [&](const char* name, nlohmann::json value) {
+      mat["extensions"][name] = std::move(value);
+      extensionsUsed_.insert(name);
+    };
+    if (m.transmission > 0.0f) extension("KHR_materials_transmission", {{"transmissionFactor", m.transmission}});
+    if (m.ior != 1.5f) extension("KHR_materials_ior", {{"ior", m.ior}});
+    if (m.volumetric) extension("KHR_materials_volume", {{"thicknessFactor", 1.0}});
     materials_.push_back(mat);
     return int(materials_.size()) - 1;
   }
@@ -130,7 +141,7 @@ class GltfWriter {
         {"buffers",
          {{{"byteLength", bytes_.size()}, {"uri", "data:application/octet-stream;base64," + base64Encode(bytes_)}}}},
         {"cameras", {{{"type", "perspective"}, {"perspective", {{"yfov", camera_.yfov}, {"znear", 0.001}}}}}}};
-    if (usesEmissiveStrength_) doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+    if (!extensionsUsed_.empty()) doc["extensionsUsed"] = extensionsUsed_;
     return doc.dump(1);
   }
 
@@ -147,7 +158,7 @@ class GltfWriter {
   nlohmann::json accessors_ = nlohmann::json::array();
   nlohmann::json bufferViews_ = nlohmann::json::array();
   CameraSpec camera_;
-  bool usesEmissiveStrength_ = false;
+  std::set<std::string> extensionsUsed_;
 };
 
 }  // namespace mixtrace::testing::analytic

@@ -19,6 +19,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "shared/constants.h"
 #include "util/error.h"
 
 // stb_image_write is compiled into this test only, with internal linkage, so it cannot clash with
@@ -1195,6 +1196,50 @@ TEST_F(GltfLoaderTest, ReadsAlphaModesAndCutoffs) {
   EXPECT_EQ(materialOf(3).flags & (kMaterialAlphaMask | kMaterialAlphaBlend), 0u);
   EXPECT_EQ(materialOf(4).flags & (kMaterialAlphaMask | kMaterialAlphaBlend), 0u);
   EXPECT_NE(warnings.find("material 4 is emissive with alphaMode BLEND: rendered opaque"), std::string::npos) << warnings;
+}
+
+// Glass: KHR_materials_transmission's factor, KHR_materials_ior, and KHR_materials_volume's
+// thickness deciding volumetric (thickness > 0) or thin-walled glass; unusable values fall back
+// to the defaults with a warning, the volume's attenuation is named as ignored, and a volumetric
+// glass of IOR 1 is kept just above it.
+TEST_F(GltfLoaderTest, ReadsGlassExtensions) {
+  GltfBuilder b;
+  auto material = [](const json& extensions) { return json{{"extensions", extensions}}; };
+  b.doc["materials"] = json::array(
+      {material({{"KHR_materials_transmission", {{"transmissionFactor", 0.8}}},
+                 {"KHR_materials_ior", {{"ior", 1.33}}},
+                 {"KHR_materials_volume", {{"thicknessFactor", 0.1}, {"attenuationDistance", 2.0}}}}),
+       material({{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}),
+       material({{"KHR_materials_ior", {{"ior", 0.5}}}}),
+       material({{"KHR_materials_transmission", {{"transmissionFactor", 1.7}}},
+                 {"KHR_materials_ior", {{"ior", 1.0}}},
+                 {"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}),
+       json::object()});
+  b.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume"};
+  json primitives = json::array();
+  const int pos = b.vec3s({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  for (int m = 0; m < 5; ++m) primitives.push_back({{"attributes", {{"POSITION", pos}}}, {"material", m}});
+  b.scene({b.node({{"mesh", b.mesh(primitives)}})});
+  std::string warnings;
+  const Scene scene = loadCapturing(b.writeGltf(dir_), warnings);
+  auto materialOf = [&](size_t t) { return scene.materials.at(scene.triangles.at(t).material); };
+  using mixtrace::shared::kMaterialVolumetric;
+  EXPECT_FLOAT_EQ(materialOf(0).transmission, 0.8f);
+  EXPECT_FLOAT_EQ(materialOf(0).ior, 1.33f);
+  EXPECT_EQ(materialOf(0).flags & kMaterialVolumetric, kMaterialVolumetric);
+  EXPECT_FLOAT_EQ(materialOf(1).transmission, 1.0f);
+  EXPECT_FLOAT_EQ(materialOf(1).ior, 1.5f);
+  EXPECT_EQ(materialOf(1).flags & kMaterialVolumetric, 0u) << "no volume: thin-walled";
+  EXPECT_FLOAT_EQ(materialOf(2).ior, 1.5f);
+  EXPECT_FLOAT_EQ(materialOf(2).transmission, 0.0f);
+  EXPECT_FLOAT_EQ(materialOf(3).transmission, 1.0f);
+  EXPECT_FLOAT_EQ(materialOf(3).ior, mixtrace::shared::kMinVolumeIor);
+  EXPECT_FLOAT_EQ(materialOf(4).transmission, 0.0f);
+  EXPECT_FLOAT_EQ(materialOf(4).ior, 1.5f);
+  for (const char* expected : {"KHR_materials_ior 0.5", "transmissionFactor outside [0, 1]",
+                               "volumetric glass of IOR 1", "ignoring KHR_materials_volume attenuation"})
+    EXPECT_NE(warnings.find(expected), std::string::npos) << expected << " in: " << warnings;
+  EXPECT_EQ(warnings.find("unsupported glTF extension"), std::string::npos) << warnings;
 }
 
 // Tangents for normal mapping: TANGENT as the file gives it, turned by the node (w flipped by a

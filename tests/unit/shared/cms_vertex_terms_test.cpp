@@ -96,15 +96,18 @@ TEST(CmsVertexTerms, HiddenPointsAreNotReachableAndKeepPositiveDensities) {
   ls.direction = vec3(0.0f, 0.0f, 1.0f);
   ls.pdf = 0.3f;
   float pk = 0.5f;
-  EXPECT_TRUE(lightPointReachable(0.6f, n, true, pk, ls));
-  EXPECT_FALSE(lightPointReachable(0.6f, n, false, pk, ls)) << "emits nothing towards the vertex";
+  EXPECT_TRUE(lightPointReachable(0.6f, n, 1.0f, false, true, pk, ls));
+  EXPECT_FALSE(lightPointReachable(0.6f, n, 1.0f, false, false, pk, ls)) << "emits nothing towards the vertex";
   ls.direction = vec3(0.0f, 0.0f, -1.0f);
-  EXPECT_FALSE(lightPointReachable(0.6f, n, true, pk, ls)) << "below the surface";
+  EXPECT_FALSE(lightPointReachable(0.6f, n, -1.0f, false, true, pk, ls)) << "below the surface";
+  EXPECT_TRUE(lightPointReachable(0.6f, n, -1.0f, true, true, pk, ls)) << "below the surface, through glass";
+  EXPECT_FALSE(lightPointReachable(0.6f, n, 0.2f, true, true, pk, ls))
+      << "below the geometric surface but above the shading frame's: no BSDF lobe reaches it";
   EXPECT_EQ(pk, 0.5f);
   // No solid-angle density: hidden, with p_k = 1 and light density c_k.
   ls.direction = vec3(0.0f, 0.0f, 1.0f);
   ls.pdf = 0.0f;
-  EXPECT_FALSE(lightPointReachable(0.6f, n, true, pk, ls));
+  EXPECT_FALSE(lightPointReachable(0.6f, n, 1.0f, false, true, pk, ls));
   EXPECT_EQ(pk, 1.0f);
   EXPECT_FLOAT_EQ(ls.pdf, 0.6f);
 }
