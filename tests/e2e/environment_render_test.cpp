@@ -115,6 +115,13 @@ TEST_P(EnvironmentRender, FurnaceSphereIsLeTimesItsAlbedo) {
       le);
   // Tolerance: the albedo table's interpolation and float.
   expectMatches(img, s.spp, expected, 2e-3);
+  // The fully general pipelines (every feature compiled in) render the same image for the same seed.
+  const RenderedImage general = renderWith(scene, s, "--env-color 0.5,0.75,1 --general-pipelines", dir / "general.exr");
+  ASSERT_TRUE(general.error.empty()) << general.error;
+  size_t differing = 0;
+  for (size_t i = 0; i < img.mean.rgb.size(); ++i)
+    differing += std::abs(img.mean.rgb[i] - general.mean.rgb[i]) > 1e-4f * std::max(1.0f, std::abs(img.mean.rgb[i]));
+  EXPECT_EQ(differing, 0u);
 }
 
 // ---------------------------------------------------------------------------------------------

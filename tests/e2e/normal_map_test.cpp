@@ -111,11 +111,12 @@ std::string floorScene(bool normalMap, double scale, const glm::dvec3* normal, d
   return doc.dump();
 }
 
-Image render(const fs::path& dir, const std::string& name, const std::string& gltf, const std::string& backend) {
+Image render(const fs::path& dir, const std::string& name, const std::string& gltf, const std::string& backend,
+             const std::string& extra = "") {
   writeFile(dir / (name + ".gltf"), gltf);
   const RunResult r = runMixtrace("render " + (dir / (name + ".gltf")).string() +
                                   " --width 32 --height 24 --spp 16 --seed 9 --max-depth 2 --method pt-power --env none "
-                                  "--no-png -q --backend " + backend + " --out " + (dir / (name + ".exr")).string());
+                                  "--no-png -q --backend " + backend + " " + extra + " --out " + (dir / (name + ".exr")).string());
   EXPECT_EQ(r.exitCode, 0) << name << ": " << r.stderrText;
   return readExr((dir / (name + ".exr")).string());
 }
@@ -142,6 +143,9 @@ TEST_P(NormalMap, TiltsTheShadingNormalAsTheSameVertexNormalsDo) {
   EXPECT_EQ(differingPixels(mapped, normals, 2e-3f), 0u);
   EXPECT_GT(differingPixels(mapped, flat, 2e-3f), mapped.rgb.size() / 4) << "the map changes nothing visible";
   EXPECT_EQ(differingPixels(scaledAway, flat, 2e-3f), 0u);
+  // The fully general pipelines (every feature compiled in) render the same image for the same seed.
+  const Image general = render(dir, "mapped-general", floorScene(true, 1.0, nullptr, 1.2, -1), GetParam(), "--general-pipelines");
+  EXPECT_EQ(differingPixels(general, mapped, 1e-4f), 0u);
 }
 
 // A light under the floor facing up at it: it lights the floor's underside (the BSDF is two-sided)
