@@ -20,7 +20,8 @@ int attributeAccessor(const tinygltf::Primitive& primitive, const char* name) {
 struct WorldVertices {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // empty: the file has none; NaN marks an unusable normal
-  std::vector<glm::vec2> uvs;      // empty: the file has none
+  std::vector<glm::vec2> uvs;      // the material's first mapping; empty: the file has none
+  std::vector<glm::vec2> uvs2;     // its second mapping (MaterialUvs); empty: none
   std::vector<glm::vec4> colors;   // COLOR_0, linear RGBA; empty: the file has none
   std::vector<glm::vec4> tangents; // TANGENT (xyz unit, w = +-1); empty: the file has none
 };
@@ -53,8 +54,34 @@ bool texcoordFormat(const AccessorReader& a, bool quantization) {
   return unsignedNormalized || (quantization && positionFormat(a, true));
 }
 
+// The texture coordinates `mapping` names (its TEXCOORD set through its transform), one per
+// vertex; empty where the primitive has none or they are unusable (with a warning).
+std::vector<glm::vec2> readUvs(const LoadContext& ctx, const tinygltf::Primitive& primitive, const std::string& where,
+                               const UvMapping& uvMapping, bool quantization, size_t count) {
+  std::vector<glm::vec2> out;
+  const std::string uvName = "TEXCOORD_" + std::to_string(uvMapping.set);
+  const int uvAccessor = attributeAccessor(primitive, uvName.c_str());
+  if (uvAccessor < 0 && uvMapping.set != 0 && attributeAccessor(primitive, "TEXCOORD_0") >= 0)
+    ctx.warning(where + " has no " + uvName + ", which its material's textures read; they get (0, 0)");
+  if (uvAccessor < 0) return out;
+  const AccessorReader uvs(ctx, uvAccessor, uvName + " of " + where);
+  const bool validFormat = uvs.type() == TINYGLTF_TYPE_VEC2 && texcoordFormat(uvs, quantization);
+  if (!validFormat) {
+    ctx.warning(uvName + " of " + where + " is neither FLOAT nor normalized UNSIGNED_BYTE/SHORT VEC2" +
+                (quantization ? " nor a KHR_mesh_quantization integer VEC2" : "") + "; texture coordinates ignored");
+    return out;
+  }
+  if (uvs.count() != count) ctx.fail(uvName + " of " + where + " has a different count than POSITION");
+  out.resize(count);
+  for (size_t i = 0; i < count; ++i) {
+    const glm::vec2 uv = uvMapping.apply(uvs.vec2(i));
+    out[i] = (std::isfinite(uv.x) && std::isfinite(uv.y)) ? uv : glm::vec2(0.0f);
+  }
+  return out;
+}
+
 WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitive& primitive, const std::string& where,
-                                const glm::dmat4& world, const UvMapping& uvMapping, bool needsTangents) {
+                                const glm::dmat4& world, const MaterialUvs& materialUvs, bool needsTangents) {
   WorldVertices v;
   const int positionAccessor = attributeAccessor(primitive, "POSITION");
   if (positionAccessor < 0) ctx.fail(where + " has no POSITION attribute");
@@ -150,25 +177,8 @@ WorldVertices transformVertices(const LoadContext& ctx, const tinygltf::Primitiv
       }
     }
   }
-  const std::string uvName = "TEXCOORD_" + std::to_string(uvMapping.set);
-  const int uvAccessor = attributeAccessor(primitive, uvName.c_str());
-  if (uvAccessor < 0 && uvMapping.set != 0 && attributeAccessor(primitive, "TEXCOORD_0") >= 0)
-    ctx.warning(where + " has no " + uvName + ", which its material's textures read; they get (0, 0)");
-  if (uvAccessor >= 0) {
-    const AccessorReader uvs(ctx, uvAccessor, uvName + " of " + where);
-    const bool validFormat = uvs.type() == TINYGLTF_TYPE_VEC2 && texcoordFormat(uvs, quantization);
-    if (!validFormat) {
-      ctx.warning(uvName + " of " + where + " is neither FLOAT nor normalized UNSIGNED_BYTE/SHORT VEC2" +
-                  (quantization ? " nor a KHR_mesh_quantization integer VEC2" : "") + "; texture coordinates ignored");
-    } else {
-      if (uvs.count() != count) ctx.fail(uvName + " of " + where + " has a different count than POSITION");
-      v.uvs.resize(count);
-      for (size_t i = 0; i < count; ++i) {
-        const glm::vec2 uv = uvMapping.apply(uvs.vec2(i));
-        v.uvs[i] = (std::isfinite(uv.x) && std::isfinite(uv.y)) ? uv : glm::vec2(0.0f);
-      }
-    }
-  }
+  v.uvs = readUvs(ctx, primitive, where, materialUvs.first, quantization, count);
+  if (materialUvs.second) v.uvs2 = readUvs(ctx, primitive, where, *materialUvs.second, quantization, count);
   return v;
 }
 
@@ -227,14 +237,15 @@ std::vector<uint32_t> triangleList(int mode, std::vector<uint32_t> indices) {
 // is up in the image, towards smaller v). MikkTSpace differs in weighting the corners by angle
 // and in splitting vertices where the frames disagree; on a smooth, consistently mapped surface
 // the two agree, at UV seams and mirrored UV islands they can differ.
-std::vector<glm::vec4> tangentsFromUvs(const WorldVertices& v, const std::vector<uint32_t>& indices) {
+std::vector<glm::vec4> tangentsFromUvs(const WorldVertices& v, const std::vector<glm::vec2>& uvs,
+                                       const std::vector<uint32_t>& indices) {
   std::vector<glm::dvec3> du(v.positions.size(), glm::dvec3(0.0)), dv(v.positions.size(), glm::dvec3(0.0)),
       faces(v.positions.size(), glm::dvec3(0.0));   // summed face normals: the normal where the file has none
   for (size_t t = 0; t + 2 < indices.size(); t += 3) {
     const uint32_t a = indices[t], b = indices[t + 1], c = indices[t + 2];
     const glm::dvec3 e1 = glm::dvec3(v.positions[b]) - glm::dvec3(v.positions[a]);
     const glm::dvec3 e2 = glm::dvec3(v.positions[c]) - glm::dvec3(v.positions[a]);
-    const glm::dvec2 w1 = glm::dvec2(v.uvs[b]) - glm::dvec2(v.uvs[a]), w2 = glm::dvec2(v.uvs[c]) - glm::dvec2(v.uvs[a]);
+    const glm::dvec2 w1 = glm::dvec2(uvs[b]) - glm::dvec2(uvs[a]), w2 = glm::dvec2(uvs[c]) - glm::dvec2(uvs[a]);
     for (uint32_t i : {a, b, c}) faces[i] += glm::cross(e1, e2);
     const double r = w1.x * w2.y - w2.x * w1.y;
     if (!(std::abs(r) > 1e-20) || !std::isfinite(r)) continue;   // degenerate UVs: no direction
@@ -274,14 +285,16 @@ bool isSurfaceMode(int mode) {
 }
 
 size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex, const glm::dmat4& world,
-                       uint32_t material, const UvMapping& uvMapping, bool needsTangents, uint32_t primitiveId,
+                       uint32_t material, const MaterialUvs& uvs, bool needsTangents, uint32_t primitiveId,
                        std::vector<Triangle>& out, GeometryStats& stats) {
   const tinygltf::Primitive& primitive = ctx.model.meshes[size_t(meshIndex)].primitives[size_t(primitiveIndex)];
   const std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex);
-  WorldVertices v = transformVertices(ctx, primitive, where, world, uvMapping, needsTangents);
+  WorldVertices v = transformVertices(ctx, primitive, where, world, uvs, needsTangents);
   if (!isSurfaceMode(primitive.mode)) ctx.fail(where + " is not made of triangles");   // the caller skips those
   const std::vector<uint32_t> indices = triangleList(primitive.mode, readIndices(ctx, primitive, where, v.positions.size()));
-  if (needsTangents && v.tangents.empty() && !v.uvs.empty()) v.tangents = tangentsFromUvs(v, indices);
+  // Generated tangents follow the coordinates the normal map reads.
+  const std::vector<glm::vec2>& normalUvs = (uvs.secondSlots & shared::kMaterialSecondUvNormal) ? v.uvs2 : v.uvs;
+  if (needsTangents && v.tangents.empty() && !normalUvs.empty()) v.tangents = tangentsFromUvs(v, normalUvs, indices);
   stats.leftoverIndices += indices.size() % 3;
 
   // A mirroring transform turns counter-clockwise into clockwise; swapping two vertices keeps the
@@ -315,6 +328,7 @@ size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex
         ++stats.invalidNormals;
       }
       tri.uv[k] = v.uvs.empty() ? glm::vec2(0.0f) : v.uvs[corner[k]];
+      if (!v.uvs2.empty()) tri.uv2[k] = v.uvs2[corner[k]];
       if (!v.colors.empty()) tri.color[k] = v.colors[corner[k]];
       if (!v.tangents.empty()) tri.tangent[k] = v.tangents[corner[k]];
     }

@@ -178,8 +178,17 @@ struct UvMapping {
   }
 };
 
+// The texture coordinates a material's textures read: at most two mappings (set and transform),
+// baked into each triangle's uv and uv2; secondSlots (kMaterialSecondUv* bits) names the textures
+// that read the second.
+struct MaterialUvs {
+  UvMapping first;
+  std::optional<UvMapping> second;
+  uint32_t secondSlots = 0;
+};
+
 size_t appendPrimitive(const LoadContext& ctx, int meshIndex, int primitiveIndex, const glm::dmat4& world,
-                       uint32_t material, const UvMapping& uvMapping, bool needsTangents, uint32_t primitiveId,
+                       uint32_t material, const MaterialUvs& uvs, bool needsTangents, uint32_t primitiveId,
                        std::vector<Triangle>& out, GeometryStats& stats);
 
 // --- gltf_materials.cpp: glTF materials and textures -> MaterialGpu and Texture, on demand.
@@ -191,7 +200,7 @@ class MaterialTable {
   uint32_t materialFor(int gltfMaterial);
   // The texture coordinates glTF material `gltfMaterial` reads (set 0, untransformed, for the
   // default material and for a material without textures).
-  UvMapping uvMappingFor(int gltfMaterial);
+  MaterialUvs uvMappingFor(int gltfMaterial);
   // Whether the material has a normal map (its triangles then need tangents).
   bool hasNormalMap(int gltfMaterial) const;
 
@@ -207,7 +216,7 @@ class MaterialTable {
   std::vector<int> materialSlots_;  // glTF material -> scene material, -1 until converted
   int defaultMaterial_ = -1;
   std::vector<int> textureSlots_;   // glTF texture -> scene texture; -1 not yet, -2 unusable
-  std::vector<std::optional<UvMapping>> uvMappings_;   // per glTF material, once asked for
+  std::vector<std::optional<MaterialUvs>> uvMappings_;   // per glTF material, once asked for
 };
 
 // --- gltf_glass.cpp

@@ -113,37 +113,50 @@ bool MaterialTable::hasNormalMap(int gltfMaterial) const {
          ctx_.model.materials[size_t(gltfMaterial)].normalTexture.index >= 0;
 }
 
-UvMapping MaterialTable::uvMappingFor(int gltfMaterial) {
-  if (gltfMaterial < 0 || size_t(gltfMaterial) >= uvMappings_.size()) return UvMapping{};
+MaterialUvs MaterialTable::uvMappingFor(int gltfMaterial) {
+  if (gltfMaterial < 0 || size_t(gltfMaterial) >= uvMappings_.size()) return MaterialUvs{};
   if (uvMappings_[size_t(gltfMaterial)]) return *uvMappings_[size_t(gltfMaterial)];
   const tinygltf::Material& src = ctx_.model.materials[size_t(gltfMaterial)];
   const std::string where = "material " + std::to_string(gltfMaterial);
-  // The textures the renderer reads, the base colour's first: it serves all where they disagree.
+  // The textures the renderer reads, the base colour's first: its mapping is the first; the first
+  // texture that reads another is the second; a third mapping falls back to the first, with a word.
   const tinygltf::TextureInfo normal = asTextureInfo(src.normalTexture);
   const tinygltf::TextureInfo transmission = transmissionTextureInfo(src);
-  const std::pair<const tinygltf::TextureInfo*, const char*> textures[] = {
-      {&src.pbrMetallicRoughness.baseColorTexture, "baseColorTexture"},
-      {&src.pbrMetallicRoughness.metallicRoughnessTexture, "metallicRoughnessTexture"},
-      {&src.emissiveTexture, "emissiveTexture"}, {&normal, "normalTexture"},
-      {&transmission, "transmissionTexture"}};
-  UvMapping chosen;
-  const char* chosenSlot = nullptr;
-  for (const auto& [info, slot] : textures) {
-    if (info->index < 0) continue;
-    const UvMapping m = uvMappingOf(ctx_, *info, where + " " + slot);
-    if (!chosenSlot) {
-      chosen = m;
-      chosenSlot = slot;
-    } else if (!(m == chosen)) {
+  struct Slot {
+    const tinygltf::TextureInfo* info;
+    const char* name;
+    uint32_t bit;
+  };
+  const Slot slots[] = {
+      {&src.pbrMetallicRoughness.baseColorTexture, "baseColorTexture", shared::kMaterialSecondUvBaseColor},
+      {&src.pbrMetallicRoughness.metallicRoughnessTexture, "metallicRoughnessTexture",
+       shared::kMaterialSecondUvMetallicRoughness},
+      {&src.emissiveTexture, "emissiveTexture", shared::kMaterialSecondUvEmissive},
+      {&normal, "normalTexture", shared::kMaterialSecondUvNormal},
+      {&transmission, "transmissionTexture", shared::kMaterialSecondUvTransmission}};
+  MaterialUvs uvs;
+  const char* firstSlot = nullptr;
+  for (const Slot& slot : slots) {
+    if (slot.info->index < 0) continue;
+    const UvMapping m = uvMappingOf(ctx_, *slot.info, where + " " + slot.name);
+    if (!firstSlot) {
+      uvs.first = m;
+      firstSlot = slot.name;
+    } else if (m == uvs.first) {
+      continue;
+    } else if (!uvs.second || m == *uvs.second) {
+      uvs.second = m;
+      uvs.secondSlots |= slot.bit;
+    } else {
       auto describe = [](const UvMapping& u) {
         return "TEXCOORD_" + std::to_string(u.set) + (u.identity() ? "" : " through a KHR_texture_transform");
       };
-      ctx_.warning(where + "'s " + slot + " reads " + describe(m) + ", its " + chosenSlot + " " + describe(chosen) +
-                   "; the triangles carry one set of coordinates, so the " + chosenSlot + "'s serves both");
+      ctx_.warning(where + "'s " + slot.name + " reads " + describe(m) + ", a third texture-coordinate mapping; the " +
+                   firstSlot + "'s " + describe(uvs.first) + " serves it (triangles carry two)");
     }
   }
-  uvMappings_[size_t(gltfMaterial)] = chosen;
-  return chosen;
+  uvMappings_[size_t(gltfMaterial)] = uvs;
+  return uvs;
 }
 
 uint32_t MaterialTable::materialFor(int gltfMaterial) {
@@ -188,6 +201,7 @@ uint32_t MaterialTable::materialFor(int gltfMaterial) {
     else ctx_.warning("material " + std::to_string(gltfMaterial) + " has an invalid normalTexture scale; using 1");
   }
   m.flags = src.doubleSided ? shared::kMaterialDoubleSided : 0u;
+  m.flags |= uvMappingFor(gltfMaterial).secondSlots;
   const GlassParameters glass = readGlass(ctx_, src, gltfMaterial);
   m.ior = glass.ior;
   m.transmission = glass.transmission;

@@ -2,6 +2,7 @@
 
 #include "shared/bindings.h"
 #include "shared/constants.h"
+#include "shared/layouts.h"
 
 namespace mixtrace {
 
@@ -17,6 +18,7 @@ std::vector<uint32_t> FeatureSet::specialization() const {
   v[SPEC_HAS_ALPHA] = alpha;
   v[SPEC_HAS_NORMAL_MAPS] = normalMaps;
   v[SPEC_HAS_TRANSMISSION] = transmission;
+  v[SPEC_HAS_SECOND_UVS] = secondUvs;
   return v;
 }
 
@@ -25,7 +27,7 @@ std::string FeatureSet::describe() const {
   return std::string("textures=") + b(textures) + " area-lights=" + b(areaLights) + " punctual-lights=" +
          b(punctualLights) + " metals=" + b(metals) + " single-light=" + b(singleLight) +
          " environment=" + b(environment) + " vertex-colors=" + b(vertexColors) + " alpha=" + b(alpha) + " normal-maps=" + b(normalMaps) +
-         " transmission=" + b(transmission);
+         " transmission=" + b(transmission) + " second-uvs=" + b(secondUvs);
 }
 
 FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
@@ -35,6 +37,7 @@ FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
   f.alpha = false;
   f.normalMaps = false;
   f.transmission = false;
+  f.secondUvs = false;
   for (const MaterialGpu& m : scene.materials) {
     f.textures |= m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0 ||
                   m.normalTexture >= 0 || m.transmissionTexture >= 0;
@@ -43,6 +46,7 @@ FeatureSet deriveFeatures(const Scene& scene, const LightSet& lights) {
     f.normalMaps |= m.normalTexture >= 0;
     // An IOR other than the default changes F0 only, but that is read in the same place.
     f.transmission |= m.transmission > 0.0f || m.ior != shared::kDefaultIor;
+    f.secondUvs |= (m.flags & shared::kMaterialSecondUvAny) != 0u;
   }
   f.areaLights = lights.hasArea();
   f.punctualLights = lights.hasPunctual();

@@ -21,6 +21,7 @@ struct FeatureSet {
   bool alpha = true;
   bool normalMaps = true;
   bool transmission = true;
+  bool secondUvs = true;   // a material's textures read two texture-coordinate mappings
 
   // Everything on: the fully general pipelines (--general-pipelines).
   static FeatureSet general() { return FeatureSet{}; }

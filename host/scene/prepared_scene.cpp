@@ -41,6 +41,14 @@ PreparedScene prepareScene(Scene scene) {
     s.tangent1 = shared::packTangent(t.tangent[1]);
     s.tangent2 = shared::packTangent(t.tangent[2]);
   }
+  // Second texture coordinates only where a material reads them: no memory for the rest.
+  p.secondUvs.assign(p.features.secondUvs ? p.shading.size() : 1, shared::TriangleUvs{});
+  if (p.features.secondUvs) {
+    for (size_t b = 0; b < p.shading.size(); ++b) {
+      const Triangle& t = scene.triangles[p.bvh.triangleOrder[b]];
+      p.secondUvs[b] = shared::TriangleUvs{t.uv2[0], t.uv2[1], t.uv2[2]};
+    }
+  }
   for (const Texture& t : scene.textures) {
     shared::TextureGpu g{};
     g.offset = uint32_t(p.texels.size());

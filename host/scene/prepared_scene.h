@@ -23,6 +23,7 @@ struct PreparedScene {
   std::vector<shared::TextureGpu> textures;
   std::vector<uint32_t> texels;
   std::vector<float> environment;  // the ENVIRONMENT buffer (scene/environment_distribution.h)
+  std::vector<shared::TriangleUvs> secondUvs;   // per triangle (BVH order) where features.secondUvs; else one
 };
 
 PreparedScene prepareScene(Scene scene);

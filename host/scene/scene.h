@@ -19,6 +19,8 @@ struct Triangle {
   glm::vec3 p[3];
   glm::vec3 n[3];      // shading normals (unit); the geometric normal where the file has none
   glm::vec2 uv[3];     // the material's TEXCOORD set, transformed; (0,0) where the file has none
+  glm::vec2 uv2[3] = {glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)};  // its second mapping, where its
+                                                                        // textures read two (kMaterialSecondUv*)
   glm::vec4 color[3] = {glm::vec4(1.0f), glm::vec4(1.0f), glm::vec4(1.0f)};  // COLOR_0 (linear RGBA)
   glm::vec4 tangent[3] = {glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f)};  // xyz unit, w = +-1; 0: none
   uint32_t material;

@@ -23,6 +23,7 @@
 #define BVH_TRIANGLE(i) (SHARED_SCENE.bvh.triangles[i])
 #define TRIANGLE(i) (SHARED_SCENE.bvh.triangles[i])
 #define TRIANGLE_SHADING(i) (SHARED_SCENE.shading[i])
+#define TRIANGLE_UV2(i) (SHARED_SCENE.secondUvs[i])
 #define MATERIAL(i) (SHARED_SCENE.scene.materials[i])
 #define TEXTURE(i) (SHARED_SCENE.textures[i])
 #define TEXEL(i) (SHARED_SCENE.texels[i])
@@ -60,6 +61,7 @@
 #define HAS_ALPHA (SHARED_SCENE.features.alpha)
 #define HAS_NORMAL_MAPS (SHARED_SCENE.features.normalMaps)
 #define HAS_TRANSMISSION (SHARED_SCENE.features.transmission)
+#define HAS_SECOND_UVS (SHARED_SCENE.features.secondUvs)
 
 #include "shared/alpha.h"
 #define BVH_ALPHA_PASSES(i, u, v, origin, direction) alphaPassesThrough(i, u, v, origin, direction)

@@ -14,7 +14,8 @@ GpuScene::GpuScene(VulkanContext& ctx, const PreparedScene& p, const shared::Cam
       texels(makeBuffer(ctx, p.texels, "texels")),
       lights(makeBuffer(ctx, p.lights.lights, "lights")),
       emitters(makeBuffer(ctx, p.lights.emitters, "emitters")),
-      environment(makeBuffer(ctx, p.environment, "environment map")) {}
+      environment(makeBuffer(ctx, p.environment, "environment map")),
+      triangleUv2(makeBuffer(ctx, p.secondUvs, "second texture coordinates")) {}
 
 void GpuScene::offerTo(BufferBindings& buffers) const {
 #define OFFER_SCENE_BUFFER(ID, name, binding, access, Type, extent, label) buffers[shared::BINDING_##ID] = &name;

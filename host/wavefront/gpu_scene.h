@@ -13,7 +13,7 @@ struct GpuScene {
   GpuScene(VulkanContext& ctx, const PreparedScene& scene, const shared::CameraGpu& camera);
   void offerTo(BufferBindings& buffers) const;   // every row, at its binding number
 
-  Buffer camera, bvhNodes, triangles, triangleShading, materials, textures, texels, lights, emitters, environment;
+  Buffer camera, bvhNodes, triangles, triangleShading, materials, textures, texels, lights, emitters, environment, triangleUv2;
 };
 
 }  // namespace mixtrace

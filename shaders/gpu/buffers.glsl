@@ -26,6 +26,7 @@ layout(constant_id = SPEC_HAS_VERTEX_COLORS) const bool HAS_VERTEX_COLORS = true
 layout(constant_id = SPEC_HAS_ALPHA) const bool HAS_ALPHA = true;
 layout(constant_id = SPEC_HAS_NORMAL_MAPS) const bool HAS_NORMAL_MAPS = true;
 layout(constant_id = SPEC_HAS_TRANSMISSION) const bool HAS_TRANSMISSION = true;
+layout(constant_id = SPEC_HAS_SECOND_UVS) const bool HAS_SECOND_UVS = true;
 
 #ifdef PASS_CONSTANTS
 layout(push_constant, scalar) uniform Push { PASS_CONSTANTS pc; };
@@ -68,6 +69,7 @@ PASS_UNREAD_BUFFERS(DECLARE_BUFFER)
 #define BVH_TRIANGLE(i) triangles[i]
 #define TRIANGLE(i) triangles[i]
 #define TRIANGLE_SHADING(i) triangleShading[i]
+#define TRIANGLE_UV2(i) triangleUv2[i]
 #define MATERIAL(i) materials[i]
 #define TEXTURE(i) textures[i]
 #define TEXEL(i) texels[i]

@@ -32,12 +32,12 @@ SHARED_FN float alphaHash(vec3 origin, vec3 direction, uint tri) {
 }
 
 // The alpha of triangle tri at barycentrics (u, v) (weights of its second and third corners).
-SHARED_FN float surfaceAlpha(TriangleShading s, MaterialGpu m, float u, float v) {
+SHARED_FN float surfaceAlpha(uint tri, TriangleShading s, MaterialGpu m, float u, float v) {
   float a = m.alpha;
   if (HAS_VERTEX_COLORS)
     a *= triangleVertexColor(s, u, v).w;
   if (HAS_TEXTURES && m.baseColorTexture >= 0) {
-    a *= sampleTexture(m.baseColorTexture, triangleUv(s, u, v), true).w;   // alpha is linear either way
+    a *= sampleTexture(m.baseColorTexture, slotUv(tri, s, m.flags, kMaterialSecondUvBaseColor, u, v), true).w;   // linear either way
   }
   return a;
 }
@@ -47,7 +47,7 @@ SHARED_FN bool alphaPassesThrough(uint tri, float u, float v, vec3 origin, vec3 
   TriangleShading s = TRIANGLE_SHADING(tri);
   MaterialGpu m = MATERIAL(s.material);
   if ((m.flags & (kMaterialAlphaMask | kMaterialAlphaBlend)) == 0u) return false;
-  float a = surfaceAlpha(s, m, u, v);
+  float a = surfaceAlpha(tri, s, m, u, v);
   if ((m.flags & kMaterialAlphaMask) != 0u) return a < m.alphaCutoff;
   return alphaHash(origin, direction, tri) >= a;
 }

@@ -25,6 +25,7 @@
 #define SPEC_HAS_ALPHA 11             // alphaMode MASK or BLEND on some material (shared/alpha.h)
 #define SPEC_HAS_NORMAL_MAPS 12       // a material with a normalTexture (shared/surface.h)
 #define SPEC_HAS_TRANSMISSION 13      // a material with KHR_materials_transmission (shared/dielectric.h)
-#define SPEC_COUNT 14
+#define SPEC_HAS_SECOND_UVS 14        // a material whose textures read two texture-coordinate mappings
+#define SPEC_COUNT 15
 
 #endif

@@ -61,6 +61,22 @@ const uint kMaterialDoubleSided = 1u;
 const uint kMaterialAlphaMask = 2u;    // alphaMode MASK: cut where alpha < alphaCutoff (shared/alpha.h)
 const uint kMaterialAlphaBlend = 4u;   // alphaMode BLEND: stochastic transparency
 const uint kMaterialVolumetric = 8u;   // KHR_materials_volume thickness > 0: glass bends light (dielectric.h)
+// The texture slots that read the triangle's second texture coordinates (TriangleUvs), where a
+// material's textures name two different sets or transforms (shared/triangle_attributes.h slotUv).
+const uint kMaterialSecondUvBaseColor = 16u;
+const uint kMaterialSecondUvMetallicRoughness = 32u;
+const uint kMaterialSecondUvEmissive = 64u;
+const uint kMaterialSecondUvNormal = 128u;
+const uint kMaterialSecondUvTransmission = 256u;
+const uint kMaterialSecondUvAny = 496u;
+
+// A triangle's second texture coordinates at its corners (its material's second TEXCOORD set or
+// transform), in the TRIANGLE_UV2 buffer, present only where a material reads them.
+struct TriangleUvs {
+  vec2 uv0;
+  vec2 uv1;
+  vec2 uv2;
+};
 
 // glTF metallic-roughness material; textures are -1 when absent.
 struct MaterialGpu {
@@ -71,7 +87,7 @@ struct MaterialGpu {
   int baseColorTexture;
   int metallicRoughnessTexture;
   int emissiveTexture;
-  uint flags;          // kMaterialDoubleSided, kMaterialAlphaMask, kMaterialAlphaBlend, kMaterialVolumetric
+  uint flags;          // kMaterialDoubleSided, kMaterialAlphaMask, kMaterialAlphaBlend, kMaterialVolumetric, kMaterialSecondUv*
   float alpha;         // baseColorFactor's alpha (read only under MASK or BLEND)
   float alphaCutoff;   // MASK's threshold
   int normalTexture;   // -1: none (shared/surface.h perturbs the shading normal with it)

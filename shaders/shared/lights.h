@@ -126,7 +126,7 @@ SHARED_FN vec3 emittedRadiance(uint tri, float u, float v, vec3 towardsViewer) {
   if (!front && (m.flags & kMaterialDoubleSided) == 0u) return vec3(0.0f);
   vec3 le = m.emission;
   if (HAS_TEXTURES && m.emissiveTexture >= 0) {
-    vec4 t = sampleTexture(m.emissiveTexture, triangleUv(s, u, v), true);
+    vec4 t = sampleTexture(m.emissiveTexture, slotUv(tri, s, m.flags, kMaterialSecondUvEmissive, u, v), true);
     le = le * vec3(t.x, t.y, t.z);
   }
   return le;

@@ -18,10 +18,13 @@
 // The environment light's map and distribution (shared/environment_layout.h); a header saying
 // "none" where the scene has none.
 #define BUFFER_ENVIRONMENT(X) X(ENVIRONMENT, environment, 48, READ_ONLY, float, UPLOADED, "environment map")
+// Second texture coordinates per triangle (layouts.h TriangleUvs); one unused entry where no
+// material reads them.
+#define BUFFER_TRIANGLE_UV2(X) X(TRIANGLE_UV2, triangleUv2, 50, READ_ONLY, TriangleUvs, UPLOADED, "second texture coordinates")
 
 #define SCENE_BUFFERS(X)                                                                             \
   BUFFER_CAMERA(X) BUFFER_BVH_NODES(X) BUFFER_TRIANGLES(X) BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) \
-  BUFFER_TEXTURES(X) BUFFER_TEXELS(X) BUFFER_LIGHTS(X) BUFFER_EMITTERS(X) BUFFER_ENVIRONMENT(X)
+  BUFFER_TEXTURES(X) BUFFER_TEXELS(X) BUFFER_LIGHTS(X) BUFFER_EMITTERS(X) BUFFER_ENVIRONMENT(X) BUFFER_TRIANGLE_UV2(X)
 // (binding 31: the method's light selection, shared/method_buffers.h.)
 
 SHARED_BEGIN

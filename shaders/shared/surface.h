@@ -16,7 +16,8 @@ struct SurfaceHit {
   vec3 position;
   vec3 geometricNormal;  // unit, on the side of the incoming ray
   vec3 shadingNormal;    // unit, same side as geometricNormal
-  vec2 uv;
+  vec2 uv;              // the material's first texture coordinates
+  vec2 uv2;             // its second (= uv unless its textures read two mappings)
   uint material;
   vec4 vertexColor;      // COLOR_0 (white without it): multiplies the base colour and its alpha
   bool fromInside;       // the ray hit the back face (for volumetric glass: it leaves the volume)
@@ -46,6 +47,9 @@ SHARED_FN vec3 normalMapped(TriangleShading s, float u, float v, vec2 uv, vec3 n
   return ml > 0.0f ? mapped / ml : n;
 }
 
+// The coordinates texture slot `slot` (a kMaterialSecondUv* bit) reads at the hit.
+SHARED_FN vec2 surfaceUv(SurfaceHit h, uint flags, uint slot) { return (flags & slot) != 0u ? h.uv2 : h.uv; }
+
 SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDirection) {
   TriangleGeom g = TRIANGLE(tri);
   TriangleShading s = TRIANGLE_SHADING(tri);
@@ -59,7 +63,10 @@ SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDir
   float len = length(ns);
   ns = len > 0.0f ? ns / len : ng;
   h.uv = triangleUv(s, u, v);
-  if (HAS_NORMAL_MAPS && HAS_TEXTURES) ns = normalMapped(s, u, v, h.uv, ns);
+  h.uv2 = h.uv;
+  uint flags = MATERIAL(s.material).flags;
+  if (HAS_SECOND_UVS && (flags & kMaterialSecondUvAny) != 0u) h.uv2 = triangleSecondUv(tri, u, v);
+  if (HAS_NORMAL_MAPS && HAS_TEXTURES) ns = normalMapped(s, u, v, surfaceUv(h, flags, kMaterialSecondUvNormal), ns);
   ns = front ? ns : -ns;
   // A shading normal that disagrees with the geometry (bad file normals) is not trusted.
   if (!(dot(ns, h.geometricNormal) > 0.0f)) ns = h.geometricNormal;
@@ -78,11 +85,11 @@ SHARED_FN BsdfParams surfaceBsdf(SurfaceHit h) {
   float roughness = m.roughness;
   if (HAS_TEXTURES) {
     if (m.baseColorTexture >= 0) {
-      vec4 t = sampleTexture(m.baseColorTexture, h.uv, true);
+      vec4 t = sampleTexture(m.baseColorTexture, surfaceUv(h, m.flags, kMaterialSecondUvBaseColor), true);
       baseColor = baseColor * vec3(t.x, t.y, t.z);
     }
     if (m.metallicRoughnessTexture >= 0) {
-      vec4 t = sampleTexture(m.metallicRoughnessTexture, h.uv, false);
+      vec4 t = sampleTexture(m.metallicRoughnessTexture, surfaceUv(h, m.flags, kMaterialSecondUvMetallicRoughness), false);
       roughness = roughness * t.y;
       metallic = HAS_METALS ? metallic * t.z : 0.0f;
     }
@@ -91,7 +98,7 @@ SHARED_FN BsdfParams surfaceBsdf(SurfaceHit h) {
   if (HAS_TRANSMISSION && (m.transmission > 0.0f || m.ior != kDefaultIor)) {
     float transmission = m.transmission;
     if (HAS_TEXTURES && m.transmissionTexture >= 0)
-      transmission = transmission * sampleTexture(m.transmissionTexture, h.uv, false).x;
+      transmission = transmission * sampleTexture(m.transmissionTexture, surfaceUv(h, m.flags, kMaterialSecondUvTransmission), false).x;
     p = withTransmission(p, transmission, m.ior, (m.flags & kMaterialVolumetric) == 0u, h.fromInside);
   }
   return p;

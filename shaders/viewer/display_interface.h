@@ -20,7 +20,7 @@
 // Named by functions of shared/cms_sampling.h it never calls: declared for GLSL to compile them,
 // dropped by the compiler, not bound (gpu/buffers.glsl).
 #define DISPLAY_UNREAD_BUFFERS(X)                                                                       \
-  BUFFER_TRIANGLES(X) BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) BUFFER_TEXTURES(X) BUFFER_TEXELS(X) \
+  BUFFER_TRIANGLES(X) BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) BUFFER_TEXTURES(X) BUFFER_TEXELS(X) BUFFER_TRIANGLE_UV2(X) \
   BUFFER_LIGHTS(X) BUFFER_EMITTERS(X) BUFFER_CELL_KEYS(X) BUFFER_CLUSTERS(X) BUFFER_CLUSTER_LIGHTS(X) \
   BUFFER_LIGHT_SELECTION(X) BUFFER_ENVIRONMENT(X)
 

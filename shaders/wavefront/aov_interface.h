@@ -9,7 +9,7 @@
 #include "shared/scene_buffers.h"
 
 #define AOV_BUFFERS(X)                                                                                   \
-  BUFFER_TRIANGLES(X) BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) BUFFER_TEXTURES(X) BUFFER_TEXELS(X) \
+  BUFFER_TRIANGLES(X) BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) BUFFER_TEXTURES(X) BUFFER_TEXELS(X) BUFFER_TRIANGLE_UV2(X) \
   BUFFER_RAY_DIRECTION(X) BUFFER_HITS(X) BUFFER_AOV(X)
 // Named by functions of the headers it includes (light look-ups) that it never calls.
 #define AOV_UNREAD_BUFFERS(X) BUFFER_LIGHTS(X) BUFFER_EMITTERS(X) BUFFER_LIGHT_SELECTION(X) BUFFER_ENVIRONMENT(X)

@@ -9,7 +9,7 @@
   BUFFER_BVH_NODES(X) BUFFER_TRIANGLES(X) BUFFER_RAY_ORIGIN(X) BUFFER_RAY_DIRECTION(X) BUFFER_HITS(X) \
   BUFFER_RAY_QUEUE(X) BUFFER_QUEUE_STATE(X)                                                        \
   /* alpha (shared/alpha.h): read only where the scene has alpha-tested materials */             \
-  BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) BUFFER_TEXTURES(X) BUFFER_TEXELS(X)
+  BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) BUFFER_TEXTURES(X) BUFFER_TEXELS(X) BUFFER_TRIANGLE_UV2(X)
 
 SHARED_BEGIN
 struct IntersectConstants {

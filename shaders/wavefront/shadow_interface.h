@@ -10,7 +10,7 @@
 #define SHADOW_BUFFERS(X)                                                                   \
   BUFFER_BVH_NODES(X) BUFFER_TRIANGLES(X) BUFFER_RADIANCE(X) BUFFER_SHADOW_QUEUE(X) BUFFER_QUEUE_STATE(X) \
   BUFFER_CELL_STATS(X) BUFFER_CELL_SAMPLES(X) BUFFER_CELL_SOLUTION(X) BUFFER_PIXEL_ESTIMATE(X) CMS_PAIR_BUFFERS(X) \
-  BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) BUFFER_TEXTURES(X) BUFFER_TEXELS(X) /* alpha */
+  BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) BUFFER_TEXTURES(X) BUFFER_TEXELS(X) BUFFER_TRIANGLE_UV2(X) /* alpha */
 // Named by functions of the headers it includes (the CMS sampling functions, the light and
 // texture look-ups) that it never calls: declared for GLSL to compile them, dropped by the
 // compiler, not bound (gpu/buffers.glsl).

@@ -1103,28 +1103,44 @@ TEST_F(GltfLoaderTest, MaterialsReadTheirTexCoordSetThroughTheirTextureTransform
       {{"pbrMetallicRoughness",
         {{"baseColorTexture", {{"index", 0}, {"extensions", transform({{"scale", {2, 2}}})}}},
          {"metallicRoughnessTexture", {{"index", 0}}}}}},
+      {{"pbrMetallicRoughness",
+        {{"baseColorTexture", {{"index", 0}, {"extensions", transform({{"scale", {2, 2}}})}}},
+         {"metallicRoughnessTexture", {{"index", 0}}}}},
+       {"emissiveTexture", {{"index", 0}, {"texCoord", 1}}},
+       {"normalTexture", {{"index", 0}}}},
   });
   b.doc["extensionsUsed"] = {"KHR_texture_transform"};
   json primitives = json::array();
-  for (int m = 0; m < 4; ++m)
+  for (int m = 0; m < 5; ++m)
     primitives.push_back({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv0}, {"TEXCOORD_1", uv1}}}, {"material", m}});
   b.scene({b.node({{"mesh", b.mesh(primitives)}})});
   std::string warnings;
   const Scene scene = loadCapturing(b.writeGltf(dir_), warnings);
-  ASSERT_EQ(scene.triangles.size(), 4u);
+  ASSERT_EQ(scene.triangles.size(), 5u);
   const glm::vec2 expected[4][3] = {
       {{0.25f, 0.5f}, {0.75f, 0.5f}, {0.25f, 1.0f}},  // TEXCOORD_1
       {{0.0f, 1.0f}, {0.0f, 0.5f}, {0.5f, 1.0f}},     // the lower-left quadrant, turned
       {{0.75f, 0.5f}, {1.25f, 0.5f}, {0.75f, 1.0f}},  // the extension's texCoord 1, offset
-      {{0.0f, 0.0f}, {2.0f, 0.0f}, {0.0f, 2.0f}},     // the base colour's scale serves both
+      {{0.0f, 0.0f}, {2.0f, 0.0f}, {0.0f, 2.0f}},     // the base colour's scale
   };
   for (int m = 0; m < 4; ++m)
     for (int k = 0; k < 3; ++k) {
       EXPECT_NEAR(scene.triangles[size_t(m)].uv[k].x, expected[m][k].x, 1e-6f) << "material " << m << " corner " << k;
       EXPECT_NEAR(scene.triangles[size_t(m)].uv[k].y, expected[m][k].y, 1e-6f) << "material " << m << " corner " << k;
     }
-  EXPECT_NE(warnings.find("material 3's metallicRoughnessTexture reads TEXCOORD_0, its baseColorTexture TEXCOORD_0 "
-                          "through a KHR_texture_transform"),
+  // Material 3's metallic-roughness texture reads TEXCOORD_0 untransformed: the second mapping.
+  using mixtrace::shared::kMaterialSecondUvAny;
+  using mixtrace::shared::kMaterialSecondUvMetallicRoughness;
+  auto materialOf = [&](size_t t) { return scene.materials.at(scene.triangles.at(t).material); };
+  for (int m = 0; m < 3; ++m) EXPECT_EQ(materialOf(size_t(m)).flags & kMaterialSecondUvAny, 0u) << "material " << m;
+  EXPECT_EQ(materialOf(3).flags & kMaterialSecondUvAny, kMaterialSecondUvMetallicRoughness);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(scene.triangles[3].uv2[k], glm::vec2(k == 1, k == 2)) << "TEXCOORD_0 corner " << k;
+  // Material 4: base colour scaled (first), metallic-roughness and normal plain TEXCOORD_0
+  // (second), emissive TEXCOORD_1: a third mapping, which the first serves, with a word.
+  EXPECT_EQ(materialOf(4).flags & kMaterialSecondUvAny,
+            kMaterialSecondUvMetallicRoughness | mixtrace::shared::kMaterialSecondUvNormal);
+  EXPECT_NE(warnings.find("material 4's emissiveTexture reads TEXCOORD_1, a third texture-coordinate mapping; the "
+                          "baseColorTexture's TEXCOORD_0 through a KHR_texture_transform serves it"),
             std::string::npos)
       << warnings;
   EXPECT_EQ(warnings.find("unsupported"), std::string::npos) << warnings;
