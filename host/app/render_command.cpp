@@ -112,6 +112,7 @@ RenderStats collectStats(const RenderOptions& o, const PreparedScene& prepared, 
   stats.cmsGridCells = setup.settings.cells;
   stats.cmsGridCellsAuto = setup.cellsChosen;
   stats.cmsAtomics = counters.statisticsAtomics;
+  stats.schedule = counters.schedule;
   stats.estimator = setup.estimator;
   stats.cmsGatheringSpp = counters.gatheringSamples;
   stats.cmsCvTechniques = counters.cvTechniques;

@@ -20,6 +20,10 @@ struct RenderSettings {
   uint32_t maxDepth = 5;
   uint32_t seed = 0;
   bool generalPipelines = false;         // Vulkan: ignore the feature set (testing aid)
+  // Vulkan: how sample passes are dispatched. Wavefront: a pass per stage and depth; fused: one
+  // dispatch that traces whole paths (methods without learning); auto: the one measured faster
+  // for the device (the wavefront, today, on lavapipe too: wavefront_renderer.cpp).
+  enum class Schedule { Auto, Wavefront, Fused } schedule = Schedule::Auto;
   uint32_t maxPathsPerChunk = 1u << 20;  // Vulkan: the wavefront's width; larger images go in chunks
   uint32_t threads = 0;                  // CPU: worker threads, 0 = one per core
   // Controlled mixture sampling (methods learned, cv, cms; docs/estimator.md).
@@ -64,6 +68,7 @@ struct RenderCounters {
   uint64_t cellTableSize = 0;         // CMS: slots of the table
   uint64_t verticesWithoutCell = 0;   // CMS: vertices refused by a full table (they get no CV)
   std::string statisticsAtomics;      // CMS on Vulkan: "float" atomics or "cas" loops
+  std::string schedule;               // Vulkan: "wavefront" or "fused" (what ran)
   uint32_t gatheringSamples = 0;      // CMS: sample passes that gathered statistics
   // The control variate's techniques (RenderSettings::perTriangleCv): "triangle" or "cluster"
   // (empty: the method has no control variate), and with "triangle" the pair table's use.

@@ -8,6 +8,7 @@
 #include "cpu/cpu_cms_path.h"
 #include "cpu/cpu_kernel_access.h"
 #include "shared/first_hit_aov.h"   // after the kernel access: it reads the scene through its macros
+#include "shared/path_tracer.h"     // likewise
 #include "util/error.h"
 #include "shared/bsdf.h"
 #include "shared/scatter_side.h"
@@ -20,92 +21,6 @@ namespace mixtrace {
 namespace {
 
 constexpr uint32_t kTileSize = 16;
-
-// One path through the scene: emission at every vertex (MIS-weighted against light sampling),
-// one light sample and one BSDF sample per vertex, balance heuristic. Returns its radiance.
-glm::vec3 tracePath(glm::vec3 origin, glm::vec3 direction, uint32_t& rng, uint32_t maxDepth, uint32_t lightCount,
-                    RenderCounters& counters) {
-  using namespace shared;
-  vec3 radiance(0.0f), throughput(1.0f);
-  float previousBsdfPdf = 0.0f;  // 0: camera ray, whose emitter hits take no MIS weight
-  vec3 previousNormal(0.0f);     // the geometric normal at `origin` (the light BVH's pmf reads it)
-  for (uint32_t depth = 1; depth <= maxDepth; ++depth) {
-    ++counters.extensionRays;
-    HitRecord hit = traceClosest(origin, direction, kFloatMax);
-    if (hit.triangle == kNoHit) {
-      // The environment, weighted against light sampling (a camera ray's is not).
-      if (hasEnvironmentLight()) {
-        float weight = 1.0f;
-        if (previousBsdfPdf > 0.0f)
-          weight = previousBsdfPdf / (previousBsdfPdf + environmentLightPdfAt(origin, previousNormal, direction));
-        radiance += throughput * environmentRadiance(direction) * weight;
-      }
-      break;
-    }
-    SurfaceHit sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
-
-    if (TRIANGLE_SHADING(hit.triangle).emitter >= 0) {
-      vec3 le = emittedRadiance(hit.triangle, hit.u, hit.v, -direction);
-      float weight = 1.0f;
-      if (previousBsdfPdf > 0.0f) {
-        float lightPdf = areaLightPdfAt(hit.triangle, origin, previousNormal, sh.position);
-        weight = previousBsdfPdf / (previousBsdfPdf + lightPdf);
-      }
-      radiance += throughput * le * weight;
-    }
-    if (depth == maxDepth) break;
-
-    BsdfParams bsdf = surfaceBsdf(sh);
-    OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
-    vec3 wo = toLocal(frame, -direction);
-    const vec3 pointError = hitPointError(hit.triangle, hit.u, hit.v);
-    const vec3 next = offsetRayOrigin(sh.position, pointError, sh.geometricNormal);
-    const vec3 nextBelow = bsdfTransmits(bsdf) ? offsetRayOrigin(sh.position, pointError, -sh.geometricNormal) : next;
-
-    float uLight = rngNextFloat(rng);
-    float uEmitter = rngNextFloat(rng);
-    // Draws in named steps: C++ leaves the order of constructor arguments unspecified, and the
-    // same seed should give the GPU's random numbers in the GPU's order.
-    float uPointX = rngNextFloat(rng);
-    float uPointY = rngNextFloat(rng);
-    vec2 uPoint(uPointX, uPointY);
-    LightSample ls;
-    // Chosen at the rays' origin `next` and the geometric normal, as the MIS weight above has them.
-    if (lightCount > 0 && sampleLightAt(sh.position, next, sh.geometricNormal, lightCount, uLight, uEmitter, uPoint, ls) &&
-        lightSideReachable(ls.direction, sh.geometricNormal, toLocal(frame, ls.direction).z, bsdfTransmits(bsdf))) {
-      vec3 wi = toLocal(frame, ls.direction);
-      vec3 f = bsdfEval(bsdf, wo, wi) * std::abs(wi.z);
-      float weight = ls.isDelta ? 1.0f : ls.pdf / (ls.pdf + bsdfPdf(bsdf, wo, wi));
-      vec3 contribution = throughput * f * ls.radiance * (weight / ls.pdf);
-      if (!isBlack(contribution)) {
-        ++counters.shadowRays;
-        vec3 shadowDirection;
-        float shadowLength;
-        const vec3 from = originTowards(ls.direction, sh.geometricNormal, next, nextBelow);
-        shadowRay(from, ls, shadowDirection, shadowLength);
-        if (!traceAny(from, shadowDirection, shadowLength)) radiance += contribution;
-      }
-    }
-
-    float uDirectionX = rngNextFloat(rng);
-    float uDirectionY = rngNextFloat(rng);
-    vec2 uDirection(uDirectionX, uDirectionY);
-    float uLobe = rngNextFloat(rng);
-    vec3 wiLocal;
-    float pdf;
-    if (!bsdfSample(bsdf, wo, uDirection, uLobe, wiLocal, pdf) || !(pdf > 0.0f)) break;
-    vec3 wiWorld = toWorld(frame, wiLocal);
-    if (!leavesOnShadingSide(wiWorld, sh.geometricNormal, wiLocal.z)) break;
-    vec3 weight = bsdfEval(bsdf, wo, wiLocal) * (std::abs(wiLocal.z) / pdf);
-    if (isBlack(weight)) break;
-    throughput *= weight;
-    previousBsdfPdf = pdf;
-    previousNormal = sh.geometricNormal;
-    origin = originTowards(wiWorld, sh.geometricNormal, next, nextBelow);
-    direction = wiWorld;
-  }
-  return radiance;
-}
 
 }  // namespace
 
@@ -168,7 +83,10 @@ void CpuRenderer::renderTile(uint32_t tile, uint32_t count, RenderCounters& loca
           ctx.pixel = pixel;
           l = traceCmsPath(camera_.position, direction, rng, ctx, local);
         } else {
-          l = tracePath(camera_.position, direction, rng, settings_.maxDepth, lightCount_, local);
+          shared::PathCounters rays{0u, 0u};
+          l = shared::tracePath(camera_.position, direction, rng, settings_.maxDepth, lightCount_, rays);
+          local.extensionRays += rays.extensionRays;
+          local.shadowRays += rays.shadowRays;
         }
         if (!std::isfinite(l.x) || !std::isfinite(l.y) || !std::isfinite(l.z)) {
           ++local.nonFiniteSamples;

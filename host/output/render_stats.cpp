@@ -41,6 +41,7 @@ void writeStatsJson(const std::string& path, const RenderStats& s) {
   j["bvh_nodes"] = s.bvhNodes;
   j["lights"] = s.lights;
   j["non_finite_samples"] = s.nonFiniteSamples;
+  if (!s.schedule.empty()) j["schedule"] = s.schedule;
   if (s.cmsCellTableSize > 0) {
     j["cms_clusters"] = s.cmsClusters;
     j["cms_gathering_spp"] = s.cmsGatheringSpp;

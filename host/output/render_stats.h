@@ -25,6 +25,7 @@ struct RenderStats {
   bool cmsGridCellsAuto = false;  // chosen by --cells auto (cms/grid_resolution.h)
   uint32_t cmsGatheringSpp = 0;   // sample passes that gathered statistics (the training schedule)
   std::string cmsAtomics;   // how the statistics are added: "float" or "cas" (Vulkan)
+  std::string schedule;     // Vulkan: "wavefront" or "fused"
   // The control variate's techniques (cv, cms): "triangle" or "cluster", how many, whether
   // triangles were merged to fit the budget, and with "triangle" the (cell, technique) pair table.
   std::string cmsCvTechniques;

@@ -18,6 +18,9 @@ MethodSetup setUpMethod(const PreparedScene& prepared, const RenderOptions& o, c
   s.maxDepth = uint32_t(o.maxDepth);
   s.seed = o.seed;
   s.generalPipelines = o.generalPipelines;
+  s.schedule = o.schedule == "fused"       ? RenderSettings::Schedule::Fused
+               : o.schedule == "wavefront" ? RenderSettings::Schedule::Wavefront
+                                           : RenderSettings::Schedule::Auto;
   s.aovs = !o.aov.empty();
   s.cms = cmsMethodFor(*row);
   s.cells = uint32_t(o.cells);

@@ -292,6 +292,11 @@ std::vector<OptionRow> executionRows() {
                     "the first usable discrete GPU, else the first usable device"),
     flag("--validation", kForRenderAndView, G::Execution, "enable the Vulkan validation layer (slow)",
          [](D& d, const V&) { d.render->validation = true; }),
+    choice("--schedule", "auto|wavefront|fused", "schedule", {"auto", "wavefront", "fused"}, "auto", G::Execution,
+           "Vulkan: wavefront (a pass per stage and depth), fused (one dispatch traces whole paths; "
+           "pt-uniform, pt-power, pt-bvh without --aov), or auto (the one measured faster for the device: "
+           "wavefront, on lavapipe too)",
+           [](D& d, const V& v) { d.render->schedule = v.text; }),
     flag("--general-pipelines", kForRenderAndView, G::Execution,
          "do not specialise the GPU pipelines on the scene's features (testing aid; same image)",
          [](D& d, const V&) { d.render->generalPipelines = true; }),

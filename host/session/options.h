@@ -58,6 +58,7 @@ struct RenderOptions {
   bool quiet = false;            // -q/--quiet
   bool validation = false;       // --validation: Vulkan validation layer
   bool generalPipelines = false; // --general-pipelines: no specialisation on scene features
+  std::string schedule = "auto"; // --schedule auto|wavefront|fused (Vulkan)
   bool variance = false;         // --variance: also write per-pixel variance of the mean
   int maxClusters;               // --max-clusters: CMS light clusters (techniques)
   int cells;                     // --cells: CMS cells along the longest scene axis; 0 = auto

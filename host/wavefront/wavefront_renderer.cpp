@@ -134,6 +134,17 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   shadow_ = std::make_unique<ShadowPass>(ctx, spec, bindings_, floatAtomicVariants);
   accumulate_ = std::make_unique<AccumulatePass>(ctx, spec, bindings_);
   if (s.aovs) aov_ = std::make_unique<AovPass>(ctx, spec, bindings_);
+  // The fused schedule keeps a path in registers: for the methods without learning (whose per-vertex
+  // statistics and deferred BSDF-sample terms live in the wavefront's path state) and without AOVs.
+  const bool fusable = !useCms && !s.aovs;
+  using Schedule = RenderSettings::Schedule;
+  if (s.schedule == Schedule::Fused && !fusable)
+    throw Error("--schedule fused traces pt-uniform, pt-power and pt-bvh without --aov; use --schedule wavefront or auto");
+  // Auto is the wavefront on every device type: on lavapipe (the CPU device measured; Mesa 22.3,
+  // AVX2, veach_mis 320x240 pt-power, side by side) the fused kernel traces 0.22-0.32 M samples/s
+  // against the wavefront's 0.39-0.43 M, and stays slower with a competing process per core
+  // (benchmarks/README.md, "Schedules"): its path loop keeps too much state live per SIMD lane.
+  if (s.schedule == Schedule::Fused) fused_ = std::make_unique<FusedPass>(ctx, spec, bindings_);
 
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     buffer(shared::BINDING_QUEUE_STATE).fillZero(cmd);
@@ -167,6 +178,13 @@ WavefrontRenderer::~WavefrontRenderer() {
 
 void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths,
                                      bool gathering) {
+  if (fused_) {
+    fused_->record(cmd, timer_,
+                   shared::FusedConstants{paths, pixelOffset, sampleIndex, settings_.seed, settings_.maxDepth,
+                                          lightCount_, uint32_t(lightSelection_)});
+    accumulate_->record(cmd, timer_, shared::AccumulateConstants{paths, pixelOffset, sampleIndex});
+    return;
+  }
   generate_->record(cmd, timer_, shared::GenerateConstants{paths, pixelOffset, sampleIndex, settings_.seed});
   shared::VertexConstants vertex{};
   vertex.pathCount = paths;
@@ -343,6 +361,7 @@ RenderCounters WavefrontRenderer::counters() const {
   c.nonFiniteSamples = q.nonFinite;
   c.extensionRays = uint64_t(q.extensionRays[0]) | (uint64_t(q.extensionRays[1]) << 32);
   c.shadowRays = uint64_t(q.shadowRays[0]) | (uint64_t(q.shadowRays[1]) << 32);
+  c.schedule = fused_ ? "fused" : "wavefront";
   if (solver_) {
     c.verticesWithoutCell = q.verticesWithoutCell;
     c.cellTableSize = cellTableSize_;

@@ -17,6 +17,7 @@
 #include "wavefront/gpu_scene.h"
 #include "wavefront/passes/accumulate_pass.h"
 #include "wavefront/passes/aov_pass.h"
+#include "wavefront/passes/fused_pass.h"
 #include "wavefront/passes/generate_pass.h"
 #include "wavefront/passes/intersect_pass.h"
 #include "wavefront/passes/pixel_estimate_pass.h"
@@ -124,6 +125,7 @@ class WavefrontRenderer : public Renderer {
   std::unique_ptr<ShadowPass> shadow_;
   std::unique_ptr<AccumulatePass> accumulate_;
   std::unique_ptr<AovPass> aov_;   // only where the render writes AOVs
+  std::unique_ptr<FusedPass> fused_;   // the fused schedule (RenderSettings::Schedule); null: wavefront
   PassTimer timer_;
   // The most timestamps one sample pass (all chunks, and the solve after it) has recorded so far:
   // what the next one is assumed to need when a submission is filled (renderSamples).
