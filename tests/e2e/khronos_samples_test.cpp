@@ -1,5 +1,6 @@
 // Khronos glTF sample models (tests/data/khronos/, each with its licence), rendered by the real
 // binary: each test checks what its model exists to show.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -10,6 +11,7 @@
 
 #include "output/exr_io.h"
 #include "support/pfm_writer.h"
+#include "support/render_with_stats.h"
 #include "support/run_binary.h"
 
 namespace {
@@ -224,6 +226,96 @@ TEST_P(BoxVertexColors, CornerColoursBlendAcrossTheFace) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, BoxVertexColors, ::testing::Values("vulkan", "cpu"),
+                         [](const auto& info) { return std::string(info.param); });
+
+// MultiUVTest: a cube (+-1) whose one material reads its base colour texture through TEXCOORD_0
+// and its emissive texture (factor 1) through TEXCOORD_1, both 1024x1024. TEXCOORD_0 unfolds the
+// faces as a cross over the base colour image, each face on its own pastel square (the +Z face on
+// the yellow one, sRGB (255, 247, 153), at U 0.25-0.5, V 0-0.25); TEXCOORD_1 puts every face on
+// the emissive image's top-left quarter (U, V 0-0.25): a green and white glTF logo on black. The
+// emissive image holds, right of it (U 0.25-0.5), the words "Multiple UVs / not supported / in this
+// viewer" in white: what a renderer that reads the emission through TEXCOORD_0 shows instead of
+// the logo; and the base colour image is white at U, V 0-0.25: what one that reads the base colour
+// through TEXCOORD_1 shows instead of yellow. On the +Z face both sets are upright and a point
+// (x, y, 1) reads texture pixel ((x + 1) * 128, (1 - y) * 128) of its 256x256 quarter (offset by
+// 256 columns through TEXCOORD_0). Boxes of quarter pixels: the logo's top rows (96-112, columns
+// 48-208) are black in the words' quarter; the words' first line (rows 64-80) lies above the logo;
+// rows 200-248 are black in both. Seen face on from z = 5 (the camera looks towards -Z with +Y up,
+// so +X is on the image's right), 30 degrees: 2.14 units at z = 1 on 64x64 pixels, 3.8 texture
+// pixels a pixel. Without an environment only the emission shows: the logo's box measures a mean
+// linear (R, G, B) of (0.105, 0.241, 0.022), green (nothing there through TEXCOORD_0), and the
+// words' box a sum of 0.010, the logo's edge (0.63, white, through TEXCOORD_0). Under a uniform
+// white environment (needed: the emissive texture makes the file's default environment black) the
+// black-emission box shows the base colour: the material is the default metallic 1, roughness 1,
+// so its chromaticity is the yellow's, linear (1, 0.930, 0.318) / 2.248 = (0.445, 0.414, 0.142),
+// within 0.03 (measured (0.445, 0.414, 0.142); white, through TEXCOORD_1, is a third each).
+class MultiUVTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(MultiUVTest, EmissionReadsTexcoord1AndBaseColourTexcoord0) {
+  struct Box {
+    double col0, col1, row0, row1;   // pixels of the 256x256 texture quarter, inclusive
+  };
+  const Box logoOnly{48, 208, 96, 112}, wordsOnly{48, 208, 64, 80}, neither{24, 232, 200, 248};
+  const fs::path dir = scratchDir("khronos-multiuv");
+  const int size = 64;
+  const double half = 4.0 * std::tan(15.0 * 3.14159265358979323846 / 180.0);   // half the view at z = 1
+  const std::string common = sample("MultiUVTest").string() +
+                             " --look-from 0,0,5 --look-at 0,0,0 --up 0,1,0 --fov 30 --width 64 --height 64 --spp 16 "
+                             "--max-depth 2 --backend " + std::string(GetParam());
+  // The mean colour of the pixels whose centres map inside a box.
+  auto meanIn = [&](const Image& img, const Box& b) {
+    glm::dvec3 sum(0.0);
+    int n = 0;
+    for (int y = 0; y < size; ++y) {
+      const double row = (1.0 - (half - (y + 0.5) * 2.0 * half / size)) * 128.0;
+      if (row < b.row0 || row > b.row1) continue;
+      for (int x = 0; x < size; ++x) {
+        const double col = (-half + (x + 0.5) * 2.0 * half / size + 1.0) * 128.0;
+        if (col < b.col0 || col > b.col1) continue;
+        const size_t p = 3 * (size_t(y) * size + x);
+        sum += glm::dvec3(img.rgb[p], img.rgb[p + 1], img.rgb[p + 2]);
+        ++n;
+      }
+    }
+    EXPECT_GE(n, 40);
+    return n > 0 ? sum / double(n) : sum;
+  };
+
+  // The emission alone.
+  const RenderWithStats emission = renderWithStats(common + " --env none", dir / "emission.exr", 300);
+  ASSERT_EQ(emission.exitCode, 0) << emission.stderrText;
+  const glm::dvec3 logo = meanIn(emission.mean, logoOnly), words = meanIn(emission.mean, wordsOnly);
+  EXPECT_GT(logo.y, 0.1) << "no logo where TEXCOORD_1 puts it (emission read through TEXCOORD_0?)";
+  EXPECT_GT(logo.y, 1.5 * logo.x) << "the logo is green";
+  EXPECT_GT(logo.y, 3.0 * logo.z) << "the logo is green";
+  EXPECT_LT(words.x + words.y + words.z, 0.05) << "the words TEXCOORD_0 would show are lit (emission read through TEXCOORD_0?)";
+  EXPECT_NE(emission.stats["features"].get<std::string>().find("second-uvs=1"), std::string::npos)
+      << emission.stats["features"];
+
+  // Lit by a uniform white environment: the base colour.
+  const RenderWithStats lit = renderWithStats(common + " --env-color 1,1,1", dir / "lit.exr", 300);
+  ASSERT_EQ(lit.exitCode, 0) << lit.stderrText;
+  const glm::dvec3 base = meanIn(lit.mean, neither);
+  const double total = base.x + base.y + base.z;
+  ASSERT_GT(total, 0.05);
+  const glm::dvec3 yellow(1.0, 0.930, 0.318);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(base[c] / total, yellow[c] / (yellow.x + yellow.y + yellow.z), 0.03)
+        << "channel " << c << " of the base colour (read through TEXCOORD_1?)";
+  EXPECT_NE(lit.stats["features"].get<std::string>().find("second-uvs=1"), std::string::npos) << lit.stats["features"];
+
+  // The fully general pipelines render the same image for the same seed.
+  const RenderWithStats general = renderWithStats(common + " --env-color 1,1,1 --general-pipelines", dir / "general.exr", 300);
+  ASSERT_EQ(general.exitCode, 0) << general.stderrText;
+  ASSERT_EQ(general.mean.rgb.size(), lit.mean.rgb.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < lit.mean.rgb.size(); ++i)
+    if (std::abs(general.mean.rgb[i] - lit.mean.rgb[i]) > 1e-4f * std::max(std::abs(general.mean.rgb[i]), std::abs(lit.mean.rgb[i])))
+      ++differing;
+  EXPECT_EQ(differing, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, MultiUVTest, ::testing::Values("vulkan", "cpu"),
                          [](const auto& info) { return std::string(info.param); });
 
 }  // namespace
