@@ -26,6 +26,7 @@
 #include "viewer/display_interface.h"
 #include "wavefront/accumulate_interface.h"
 #include "wavefront/aov_interface.h"
+#include "wavefront/fused_interface.h"
 #include "wavefront/generate_interface.h"
 #include "wavefront/intersect_interface.h"
 #include "wavefront/prepare_interface.h"

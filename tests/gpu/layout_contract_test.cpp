@@ -30,6 +30,7 @@
 #include "vulkan/embedded_shaders.h"
 #include "wavefront/accumulate_interface.h"
 #include "wavefront/aov_interface.h"
+#include "wavefront/fused_interface.h"
 #include "wavefront/generate_interface.h"
 #include "wavefront/intersect_interface.h"
 #include "wavefront/prepare_interface.h"
@@ -159,6 +160,7 @@ std::map<std::string, Interface> interfaces() {
       {"shadow", INTERFACE_WITH_UNREAD(SHADOW_BUFFERS, VertexConstants, SHADOW_UNREAD_BUFFERS)},
       {"shadow_float_atomics", INTERFACE_WITH_UNREAD(SHADOW_BUFFERS, VertexConstants, SHADOW_UNREAD_BUFFERS)},
       {"accumulate", INTERFACE(ACCUMULATE_BUFFERS, AccumulateConstants)},
+      {"fused", INTERFACE(FUSED_BUFFERS, FusedConstants)},
       {"aov", INTERFACE_WITH_UNREAD(AOV_BUFFERS, AovConstants, AOV_UNREAD_BUFFERS)},
       {"pixel_estimate", INTERFACE(PIXEL_ESTIMATE_BUFFERS, PixelEstimateConstants)},
       {"solve", INTERFACE(SOLVE_BUFFERS, SolveParams)},
