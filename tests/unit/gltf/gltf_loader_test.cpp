@@ -180,6 +180,17 @@ class GltfLoaderTest : public ::testing::Test {
     }
   }
 
+  // One triangle for each material of b's document (triangle i has material i), loaded with its
+  // warnings.
+  Scene loadTrianglePerMaterial(GltfBuilder& b, std::string& warnings) {
+    json primitives = json::array();
+    const int pos = b.vec3s({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    for (size_t m = 0; m < b.doc["materials"].size(); ++m)
+      primitives.push_back({{"attributes", {{"POSITION", pos}}}, {"material", m}});
+    b.scene({b.node({{"mesh", b.mesh(primitives)}})});
+    return loadCapturing(b.writeGltf(dir_), warnings);
+  }
+
   // The message of the mixtrace::Error that loading `path` must throw ("" when none was thrown).
   std::string loadError(const std::string& path) {
     std::string warnings;
@@ -1194,12 +1205,8 @@ TEST_F(GltfLoaderTest, ReadsAlphaModesAndCutoffs) {
   b.doc["materials"] = json::array({material("MASK", 0.7, {{"alphaCutoff", 0.25}}), material("MASK", 1.0),
                                     material("BLEND", 0.3), material("OPAQUE", 0.2),
                                     material("BLEND", 0.5, {{"emissiveFactor", {1, 1, 1}}})});
-  json primitives = json::array();
-  const int pos = b.vec3s({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-  for (int m = 0; m < 5; ++m) primitives.push_back({{"attributes", {{"POSITION", pos}}}, {"material", m}});
-  b.scene({b.node({{"mesh", b.mesh(primitives)}})});
   std::string warnings;
-  const Scene scene = loadCapturing(b.writeGltf(dir_), warnings);
+  const Scene scene = loadTrianglePerMaterial(b, warnings);
   auto materialOf = [&](size_t t) { return scene.materials.at(scene.triangles.at(t).material); };
   using mixtrace::shared::kMaterialAlphaBlend;
   using mixtrace::shared::kMaterialAlphaMask;
@@ -1232,12 +1239,8 @@ TEST_F(GltfLoaderTest, ReadsGlassExtensions) {
                  {"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}),
        json::object()});
   b.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume"};
-  json primitives = json::array();
-  const int pos = b.vec3s({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-  for (int m = 0; m < 5; ++m) primitives.push_back({{"attributes", {{"POSITION", pos}}}, {"material", m}});
-  b.scene({b.node({{"mesh", b.mesh(primitives)}})});
   std::string warnings;
-  const Scene scene = loadCapturing(b.writeGltf(dir_), warnings);
+  const Scene scene = loadTrianglePerMaterial(b, warnings);
   auto materialOf = [&](size_t t) { return scene.materials.at(scene.triangles.at(t).material); };
   using mixtrace::shared::kMaterialVolumetric;
   EXPECT_FLOAT_EQ(materialOf(0).transmission, 0.8f);

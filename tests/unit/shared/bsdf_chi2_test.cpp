@@ -8,12 +8,14 @@
 
 #include <gtest/gtest.h>
 
+#include "support/bsdf_sampler.h"
 #include "support/chi2.h"
 #include "shared/bsdf.h"
 
 namespace {
 
 using namespace mixtrace::shared;
+using mixtrace::testing::bsdfSampler;
 using glm::vec2;
 using glm::vec3;
 
@@ -50,19 +52,6 @@ const double kLevel = chi2::sidakLevel(kChiSquareTests);
 
 vec3 directionAt(float theta, float phi) {
   return vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
-}
-
-chi2::DirectionSampler bsdfSampler(const BsdfParams& m, const vec3& wo) {
-  return [m, wo](chi2::Uniforms& u, vec3& wi) {
-    const vec2 uDir = u.next2();
-    const float uLobe = u.next();
-    float pdf = -1.0f;
-    const bool ok = bsdfSample(m, wo, uDir, uLobe, wi, pdf);
-    // The reported pdf is the density of the direction, or 0 for a failed sample.
-    if (ok && !(pdf > 0.0f && std::isfinite(pdf))) ADD_FAILURE() << "sampled pdf " << pdf;
-    if (!ok && pdf != 0.0f) ADD_FAILURE() << "failed sample with pdf " << pdf;
-    return ok;
-  };
 }
 
 class BsdfChi2 : public ::testing::TestWithParam<BsdfCase> {};

@@ -9,12 +9,14 @@
 
 #include <gtest/gtest.h>
 
+#include "support/bsdf_sampler.h"
 #include "support/chi2.h"
 #include "shared/bsdf.h"
 
 namespace {
 
 using namespace mixtrace::shared;
+using mixtrace::testing::bsdfSampler;
 using glm::vec2;
 using glm::vec3;
 
@@ -70,18 +72,6 @@ std::vector<vec3> peaksOf(const BsdfParams& m, const vec3& wo) {
   return peaks;
 }
 
-chi2::DirectionSampler sampler(const BsdfParams& m, const vec3& wo) {
-  return [m, wo](chi2::Uniforms& u, vec3& wi) {
-    const vec2 uDir = u.next2();
-    const float uLobe = u.next();
-    float pdf = -1.0f;
-    const bool ok = bsdfSample(m, wo, uDir, uLobe, wi, pdf);
-    if (ok && !(pdf > 0.0f && std::isfinite(pdf))) ADD_FAILURE() << "sampled pdf " << pdf;
-    if (!ok && pdf != 0.0f) ADD_FAILURE() << "failed sample with pdf " << pdf;
-    return ok;
-  };
-}
-
 class GlassChi2 : public ::testing::TestWithParam<GlassCase> {};
 
 TEST_P(GlassChi2, SamplesFollowThePdfOverTheSphere) {
@@ -89,7 +79,7 @@ TEST_P(GlassChi2, SamplesFollowThePdfOverTheSphere) {
   const BsdfParams m = glass(c);
   const vec3 wo = directionAt(c.thetaO, 0.4f);
   const auto fit = chi2::testSamplerAgainstPdf(
-      sampler(m, wo), [&](vec3 wi) { return double(bsdfPdf(m, wo, wi)); }, 2.0 * m.alpha, kSamples, 4321,
+      bsdfSampler(m, wo), [&](vec3 wi) { return double(bsdfPdf(m, wo, wi)); }, 2.0 * m.alpha, kSamples, 4321,
       peaksOf(m, wo));
   std::printf("    eta %.3f: p-value %.4f (chi2 %.1f, %d dof), pdf integral %.6f, failed %.6f\n", m.eta,
               fit.chi2.pValue, fit.chi2.statistic, fit.chi2.dof, fit.pdfIntegral, fit.failureFraction);
@@ -109,7 +99,7 @@ TEST(GlassChi2Power, RejectsTheWrongIor) {
   wrong.eta = 1.53f;
   const vec3 wo = directionAt(c.thetaO, 0.4f);
   const auto fit = chi2::testSamplerAgainstPdf(
-      sampler(m, wo), [&](vec3 wi) { return double(bsdfPdf(wrong, wo, wi)); }, 2.0 * m.alpha, kSamples, 77,
+      bsdfSampler(m, wo), [&](vec3 wi) { return double(bsdfPdf(wrong, wo, wi)); }, 2.0 * m.alpha, kSamples, 77,
       peaksOf(m, wo));
   EXPECT_LT(fit.chi2.pValue, 1e-6);
 }
