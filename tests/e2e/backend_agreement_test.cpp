@@ -13,6 +13,7 @@
 #include "support/run_binary.h"
 #include "support/shipped_scenes.h"
 #include "support/test_level.h"
+#include "support/image_difference.h"
 
 namespace fs = std::filesystem;
 using namespace mixtrace;
@@ -51,9 +52,7 @@ TEST_P(BackendAgreement, SameSeedTracesTheSamePaths) {
   Image gpu = renderWith(GetParam(), "vulkan", extra, dir / "gpu.exr");
   Image cpu = renderWith(GetParam(), "cpu", extra, dir / "cpu.exr");
   ASSERT_EQ(gpu.rgb.size(), cpu.rgb.size());
-  size_t differing = 0;
-  for (size_t i = 0; i < gpu.rgb.size(); ++i)
-    if (std::abs(gpu.rgb[i] - cpu.rgb[i]) > 1e-3f * std::max(1e-2f, std::abs(cpu.rgb[i]))) ++differing;
+  const size_t differing = differingChannels(gpu, cpu, 1e-3f, 1e-2f);
   // A few paths diverge where a ray grazes an edge and float rounding differs between the two.
   EXPECT_LE(differing, gpu.rgb.size() / 200) << differing << " of " << gpu.rgb.size() << " channels differ";
 }

@@ -24,6 +24,7 @@
 #include "support/render_with_stats.h"
 #include "support/shipped_scenes.h"
 #include "support/test_level.h"
+#include "support/image_difference.h"
 
 namespace fs = std::filesystem;
 using namespace mixtrace;
@@ -137,9 +138,7 @@ TEST(TriangleCvBackends, VulkanAgreesWithTheCpuReference) {
     RenderWithStats gpu = renderOn("vulkan", scene, args, dir / (std::string(method) + "-gpu.exr"));
     ASSERT_FALSE(cpu.mean.rgb.empty() || gpu.mean.rgb.empty()) << method;
     ASSERT_EQ(cpu.mean.rgb.size(), gpu.mean.rgb.size());
-    size_t differing = 0;
-    for (size_t i = 0; i < gpu.mean.rgb.size(); ++i)
-      if (std::abs(gpu.mean.rgb[i] - cpu.mean.rgb[i]) > 1e-3f * std::max(1e-2f, std::abs(cpu.mean.rgb[i]))) ++differing;
+    const size_t differing = differingChannels(gpu.mean, cpu.mean, 1e-3f, 1e-2f);
     EXPECT_LE(differing, gpu.mean.rgb.size() / 200) << method << ": " << differing << " of " << gpu.mean.rgb.size()
                                                     << " channels differ";
     EXPECT_EQ(cpu.stats["cms_pairs_used"], gpu.stats["cms_pairs_used"]) << method;

@@ -14,6 +14,7 @@
 #include "output/exr_io.h"
 #include "support/run_binary.h"
 #include "support/shipped_scenes.h"
+#include "support/image_difference.h"
 
 namespace fs = std::filesystem;
 using namespace mixtrace;
@@ -79,10 +80,7 @@ TEST(Specialization, MatchesGeneralPipelines) {
     ASSERT_EQ(runMixtrace(common + " --general-pipelines --out " + (dir / "b.exr").string()).exitCode, 0) << scene;
     Image a = readExr((dir / "a.exr").string()), b = readExr((dir / "b.exr").string());
     ASSERT_EQ(a.rgb.size(), b.rgb.size());
-    size_t differing = 0;
-    for (size_t i = 0; i < a.rgb.size(); ++i)
-      if (std::abs(a.rgb[i] - b.rgb[i]) > 1e-4f * std::max(1.0f, std::abs(b.rgb[i]))) ++differing;
-    EXPECT_EQ(differing, 0u) << scene;
+    EXPECT_EQ(differingChannels(a, b, 1e-4f), 0u) << scene;
   }
 }
 
