@@ -50,6 +50,12 @@ BufferExtents extentsFor(const RenderSettings& s, const PreparedScene& scene, co
 
 }  // namespace
 
+bool fusedScheduleRuns(const RenderSettings& s, const MethodLights& lights) {
+  // The fused schedule keeps a path in registers: for the methods without learning (whose per-vertex
+  // statistics and deferred BSDF-sample terms live in the wavefront's path state) and without AOVs.
+  return !usesCms(s, cmsOf(s, lights)) && !s.aovs;
+}
+
 WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const MethodLights& lights,
                                      const RenderSettings& s)
     : ctx_(ctx),
@@ -134,11 +140,8 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   shadow_ = std::make_unique<ShadowPass>(ctx, spec, bindings_, floatAtomicVariants);
   accumulate_ = std::make_unique<AccumulatePass>(ctx, spec, bindings_);
   if (s.aovs) aov_ = std::make_unique<AovPass>(ctx, spec, bindings_);
-  // The fused schedule keeps a path in registers: for the methods without learning (whose per-vertex
-  // statistics and deferred BSDF-sample terms live in the wavefront's path state) and without AOVs.
-  const bool fusable = !useCms && !s.aovs;
   using Schedule = RenderSettings::Schedule;
-  if (s.schedule == Schedule::Fused && !fusable)
+  if (s.schedule == Schedule::Fused && !fusedScheduleRuns(s, lights))
     throw Error("--schedule fused traces pt-uniform, pt-power and pt-bvh without --aov; use --schedule wavefront or auto");
   // Auto is the wavefront on every device type: on lavapipe (the CPU device measured; Mesa 22.3,
   // AVX2, veach_mis 320x240 pt-power, side by side) the fused kernel traces 0.22-0.32 M samples/s

@@ -40,6 +40,10 @@ struct SparseSolveSettings;
 
 class VulkanContext;
 
+// Whether --schedule fused can run this method (pt-uniform, pt-power, pt-bvh, or a learning
+// method that reduces to one; no AOVs).
+bool fusedScheduleRuns(const RenderSettings& settings, const MethodLights& lights);
+
 class WavefrontRenderer : public Renderer {
  public:
   // `lights` is the method's light data beside the scene (its selection table; the light clusters,

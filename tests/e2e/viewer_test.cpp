@@ -112,6 +112,21 @@ TEST(Viewer, ScriptedSessionUnderXvfb) {
   EXPECT_GT(meta.ints["spp"], 0);
 }
 
+// Keys switch methods freely: under --schedule fused a learning method gets the wavefront, said
+// once, instead of ending the session.
+TEST(Viewer, FusedScheduleGivesLearningMethodsTheWavefront) {
+  ASSERT_EQ(std::system("command -v xvfb-run > /dev/null"), 0) << "xvfb-run is missing (scripts/setup.sh installs xvfb)";
+  const fs::path dir = scratchDir("viewer-fused");
+  writeFile(dir / "script.txt", "frames 2\nkey 5\nframes 2\nscreenshot " + (dir / "cms.png").string() + "\nquit\n");
+  const std::string scene = std::string(MIXTRACE_SOURCE_DIR) + "/scenes/veach_mis.gltf";
+  RunResult r = runMixtrace("view " + scene + " --method pt-power --schedule fused --width 32 --height 24 --script " +
+                                (dir / "script.txt").string(),
+                            "xvfb-run -a -s '-screen 0 1024x768x24'", 300);
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_NE(r.stderrText.find("cms runs on the wavefront schedule"), std::string::npos) << r.stderrText;
+  EXPECT_GT(load((dir / "cms.png").string()).mean(), 8.0) << "the image is black";
+}
+
 TEST(Viewer, WithoutADisplayItFailsWithOneLine) {
   RunResult r = runMixtrace("view --width 32 --height 24", "env -u DISPLAY -u WAYLAND_DISPLAY", 60);
   EXPECT_EQ(r.exitCode, 1);
