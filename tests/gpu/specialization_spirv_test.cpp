@@ -67,16 +67,19 @@ TEST_P(SpecializationSpirv, AFeatureSwitchedOffLeavesNoneOfItsCode) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Features, SpecializationSpirv,
-                         // Measured (instructions on / off): alpha 1374 / 637 in intersect, 1368 / 626
-                         // in shadow; vertex colours 11645 / 11602, environment 11645 / 9084, textures
-                         // 11645 / 8386, normal maps 11645 / 11022, transmission 11645 / 9355 in shade.
+                         // Measured (instructions on / off): alpha 1425 / 637 in intersect, 1419 / 626
+                         // in shadow; vertex colours 11767 / 11724, environment 11767 / 9206, textures
+                         // 11767 / 8426, normal maps 11767 / 11139, transmission 11767 / 9473, second
+                         // texture coordinates 11767 / 11645 in shade (1425 / 1374 in intersect).
                          ::testing::Values(FeatureCase{"alpha", SPEC_HAS_ALPHA, "intersect", 400},
                                            FeatureCase{"alpha", SPEC_HAS_ALPHA, "shadow", 400},
                                            FeatureCase{"vertex_colours", SPEC_HAS_VERTEX_COLORS, "shade", 30},
                                            FeatureCase{"environment", SPEC_HAS_ENVIRONMENT, "shade", 1000},
                                            FeatureCase{"textures", SPEC_HAS_TEXTURES, "shade", 1000},
                                            FeatureCase{"normal_maps", SPEC_HAS_NORMAL_MAPS, "shade", 50},
-                                           FeatureCase{"transmission", SPEC_HAS_TRANSMISSION, "shade", 1500}),
+                                           FeatureCase{"transmission", SPEC_HAS_TRANSMISSION, "shade", 1500},
+                                           FeatureCase{"second_uvs", SPEC_HAS_SECOND_UVS, "shade", 60},
+                                           FeatureCase{"second_uvs", SPEC_HAS_SECOND_UVS, "intersect", 25}),
                          [](const auto& info) {
                            return std::string(info.param.feature) + "_" + info.param.module;
                          });
