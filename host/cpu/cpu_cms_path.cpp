@@ -81,9 +81,8 @@ class CmsPath {
       v.bsdf = surfaceBsdf(sh);
       v.frame = makeOrthonormalBasis(sh.shadingNormal);
       v.wo = toLocal(v.frame, -direction);
-      const vec3 pointError = hitPointError(hit.triangle, hit.u, hit.v);
-      v.next = offsetRayOrigin(sh.position, pointError, sh.geometricNormal);
-      v.nextBelow = bsdfTransmits(v.bsdf) ? offsetRayOrigin(sh.position, pointError, -sh.geometricNormal) : v.next;
+      scatterOrigins(sh.position, hit.triangle, hit.u, hit.v, sh.geometricNormal, bsdfTransmits(v.bsdf), v.next,
+                     v.nextBelow);
       v.beta = beta;
       enterCell(v);
       sampleLight(v, rng);

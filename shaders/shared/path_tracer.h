@@ -62,9 +62,9 @@ SHARED_FN vec3 tracePath(vec3 origin, vec3 direction, INOUT(uint) rng, uint maxD
     BsdfParams bsdf = surfaceBsdf(sh);
     OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
     vec3 wo = toLocal(frame, -direction);
-    vec3 pointError = hitPointError(hit.triangle, hit.u, hit.v);
-    vec3 next = offsetRayOrigin(sh.position, pointError, sh.geometricNormal);
-    vec3 nextBelow = bsdfTransmits(bsdf) ? offsetRayOrigin(sh.position, pointError, -sh.geometricNormal) : next;
+    vec3 next;
+    vec3 nextBelow;
+    scatterOrigins(sh.position, hit.triangle, hit.u, hit.v, sh.geometricNormal, bsdfTransmits(bsdf), next, nextBelow);
 
     // Draws in named steps: C++ leaves the order of constructor arguments unspecified, and the
     // same seed gives every schedule the same random numbers in the same order.

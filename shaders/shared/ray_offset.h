@@ -42,5 +42,15 @@ SHARED_FN vec3 offsetRayOrigin(vec3 p, vec3 pError, vec3 n) {
   return p + d * n;
 }
 
+// The origins of the rays leaving hit (tri, u, v) at p with geometric normal n (on the incoming
+// side): offset to that side (`above`) and, for a BSDF that transmits, to the far side (`below`;
+// otherwise the same), for every integrator alike (scatter_side.h originTowards picks one).
+SHARED_FN void scatterOrigins(vec3 p, uint tri, float u, float v, vec3 n, bool transmits, OUT(vec3) above,
+                              OUT(vec3) below) {
+  vec3 pointError = hitPointError(tri, u, v);
+  above = offsetRayOrigin(p, pointError, n);
+  below = transmits ? offsetRayOrigin(p, pointError, -n) : above;
+}
+
 SHARED_END_WITH_BUFFERS
 #endif

@@ -263,9 +263,8 @@ void main() {
   v.bsdf = surfaceBsdf(sh);
   v.frame = makeOrthonormalBasis(sh.shadingNormal);
   v.wo = toLocal(v.frame, -dir);
-  vec3 pointError = hitPointError(hit.triangle, hit.u, hit.v);
-  v.origin = offsetRayOrigin(sh.position, pointError, sh.geometricNormal);
-  v.originBelow = bsdfTransmits(v.bsdf) ? offsetRayOrigin(sh.position, pointError, -sh.geometricNormal) : v.origin;
+  scatterOrigins(sh.position, hit.triangle, hit.u, hit.v, sh.geometricNormal, bsdfTransmits(v.bsdf), v.origin,
+                 v.originBelow);
   v.beta = beta;
   v.cell = kNoCell;
   v.cv = false;
