@@ -1,31 +1,46 @@
 // Flattens the host-side BVH tree into the binary layout of shared/layouts.h.
 #include "bvh/bvh_gpu_layout.h"
 
+#include <string>
+
 #include <glm/glm.hpp>
+
+#include "util/error.h"
 
 namespace mixtrace {
 namespace {
 
-// Writes the tree node `source` at `target` and, for an interior node, appends its two children
-// as an adjacent pair, then lays out the left subtree before the right one (the order the
-// traversal's memory accesses were tuned on; any order with adjacent children is valid).
-void flattenNode(const BvhTree& tree, uint32_t source, uint32_t target,
-                 std::vector<shared::BvhNode>& out) {
+// The reference to a leaf's triangles [first, first + count) (shared/layouts.h).
+uint32_t leafRef(uint32_t first, uint32_t count) {
+  return shared::kBvhLeafRef | (count << shared::kBvhLeafCountShift) | first;
+}
+
+uint32_t flattenInterior(const BvhTree& tree, uint32_t source, std::vector<shared::BvhNode>& out);
+
+uint32_t childRef(const BvhTree& tree, uint32_t child, std::vector<shared::BvhNode>& out) {
+  const BvhBuildNode& node = tree.nodes[child];
+  return node.isLeaf() ? leafRef(node.firstTriangle, node.triangleCount)
+                       : flattenInterior(tree, child, out);
+}
+
+// Appends the interior tree node `source` with its children's boxes, then its left subtree and
+// its right one (depth first, left first: the near child of a visit is often the next node in
+// memory). Returns its index. `out` grows during the recursion, so it is indexed, never
+// referenced across a call.
+uint32_t flattenInterior(const BvhTree& tree, uint32_t source, std::vector<shared::BvhNode>& out) {
   const BvhBuildNode& node = tree.nodes[source];
-  out[target].boundsMin = node.bounds.min;
-  out[target].boundsMax = node.bounds.max;
-  if (node.isLeaf()) {
-    out[target].leftOrFirst = node.firstTriangle;
-    out[target].triCount = node.triangleCount;
-    return;
-  }
-  const uint32_t left = uint32_t(out.size());
-  out[target].leftOrFirst = left;
-  out[target].triCount = 0;
-  out.emplace_back();
-  out.emplace_back();
-  flattenNode(tree, node.left, left, out);
-  flattenNode(tree, node.right, left + 1, out);
+  const uint32_t index = uint32_t(out.size());
+  shared::BvhNode flat{};
+  flat.leftMin = tree.nodes[node.left].bounds.min;
+  flat.leftMax = tree.nodes[node.left].bounds.max;
+  flat.rightMin = tree.nodes[node.right].bounds.min;
+  flat.rightMax = tree.nodes[node.right].bounds.max;
+  out.push_back(flat);
+  const uint32_t left = childRef(tree, node.left, out);
+  const uint32_t right = childRef(tree, node.right, out);
+  out[index].leftRef = left;
+  out[index].rightRef = right;
+  return index;
 }
 
 shared::TriangleGeom makeGeom(const TriangleCorners& tri) {
@@ -45,10 +60,26 @@ shared::TriangleGeom makeGeom(const TriangleCorners& tri) {
 }  // namespace
 
 std::vector<shared::BvhNode> flattenBvhNodes(const BvhTree& tree) {
+  // The leaf references address triangles with 28 bits; lavapipe's 128 MiB storage buffers hold
+  // 3.7 M triangles, so this is a limit for GPUs only.
+  if (tree.triangleOrder.size() > size_t(shared::kBvhLeafFirstMask) + 1)
+    throw Error("the scene has " + std::to_string(tree.triangleOrder.size()) +
+                " triangles; the BVH addresses at most 268,435,456");
+  static_assert(kBvhMaxLeafSize <= (~shared::kBvhLeafRef >> shared::kBvhLeafCountShift),
+                "a leaf's triangle count must fit its reference's count bits");
   std::vector<shared::BvhNode> out;
-  out.reserve(tree.nodes.size());  // one GPU node per tree node: never reallocated
-  out.emplace_back();
-  flattenNode(tree, 0, 0, out);
+  const BvhBuildNode& root = tree.nodes[0];
+  if (root.isLeaf()) {
+    shared::BvhNode only{};
+    only.leftMin = only.rightMin = root.bounds.min;
+    only.leftMax = only.rightMax = root.bounds.max;
+    only.leftRef = leafRef(root.firstTriangle, root.triangleCount);
+    only.rightRef = leafRef(root.firstTriangle, 0);
+    out.push_back(only);
+    return out;
+  }
+  out.reserve(tree.nodes.size() / 2);  // one node per interior tree node
+  flattenInterior(tree, 0, out);
   return out;
 }
 

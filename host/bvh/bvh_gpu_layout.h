@@ -1,5 +1,5 @@
 #pragma once
-// The binary BVH layout the shared traversal walks (shaders/shared/bvh_traverse.h, on the GPU
+// The BVH layout the shared traversal walks (shaders/shared/bvh_traverse.h, on the GPU
 // and on the CPU), flattened from the host-side tree of bvh_build.h: a copy of these arrays is
 // all the GPU needs.
 #include <vector>
@@ -10,10 +10,10 @@
 
 namespace mixtrace {
 
-// Node 0 is the root. Interior nodes (triCount == 0) have their children adjacent, at
-// leftOrFirst and leftOrFirst + 1, allocated when their parent is written, and the left
-// subtree is laid out before the right one; leaves own triangles [leftOrFirst,
-// leftOrFirst + triCount) of the tree's triangle order. Boxes are the tree's, unchanged.
+// One node per interior tree node, holding both children's boxes (the tree's, unchanged) and
+// references to them (shared/layouts.h BvhNode): node 0 is the root, and each node's subtree
+// follows it, the left one first. A tree that is a single leaf gives one node whose left child is
+// that leaf. Throws mixtrace::Error above 2^28 triangles.
 std::vector<shared::BvhNode> flattenBvhNodes(const BvhTree& tree);
 
 // Intersection data in the tree's triangle order: v0, e1 = v1 - v0, e2 = v2 - v0. A triangle

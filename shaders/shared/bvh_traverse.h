@@ -14,9 +14,13 @@
 // counts when 0 < t < tMax, with t in units of `direction` (which need not be normalised).
 // HitRecord.u/.v are the barycentric weights of v1 and v2.
 //
-// Speed: both children's boxes are tested at their parent, the nearer is entered at once and
-// the farther pushed with its entry distance, so the stack only holds boxes the ray does enter
-// and the closest-hit search drops those that start beyond the best hit so far.
+// Speed: a node holds both children's boxes (shared/layouts.h BvhNode), so a visit is one 64-byte
+// read; the nearer child is entered at once and the farther pushed as its reference with its
+// entry distance, so the stack only holds boxes the ray does enter, a popped child needs no read
+// to know whether it is a leaf, and the closest-hit search drops those that start beyond the
+// best hit so far. (On lavapipe this took the intersect pass 10-16 % and the shadow pass 4-10 %
+// below the layout with one box per node, which read both children per visit and a node again
+// per pop: benchmarks/README.md, "BVH layout".)
 #ifndef MIXTRACE_SHARED_BVH_TRAVERSE_H
 #define MIXTRACE_SHARED_BVH_TRAVERSE_H
 #include "shared/layouts.h"
@@ -118,16 +122,16 @@ SHARED_FN HitRecord bvhTraverse(vec3 origin, vec3 direction, float tMax, bool st
   hit.u = 0.0f;
   hit.v = 0.0f;
   vec3 invDir = bvhSafeReciprocal(direction);
-  BvhNode node = BVH_NODE(0u);
-  if (bvhBoxEntry(node.boundsMin, node.boundsMax, origin, invDir, tMax) >= kBvhMiss) return hit;
 
   uint stack[kBvhStackSize];
   float stackEntry[kBvhStackSize];
   uint stackSize = 0u;
+  uint current = 0u;  // node 0, the root: its two boxes are the first test
   while (true) {
-    if (node.triCount > 0u) {
-      uint end = node.leftOrFirst + node.triCount;
-      for (uint i = node.leftOrFirst; i < end; ++i) {
+    if ((current & kBvhLeafRef) != 0u) {
+      uint first = current & kBvhLeafFirstMask;
+      uint end = first + ((current & ~kBvhLeafRef) >> kBvhLeafCountShift);
+      for (uint i = first; i < end; ++i) {
         float t = 0.0f;
         float u = 0.0f;
         float v = 0.0f;
@@ -143,28 +147,28 @@ SHARED_FN HitRecord bvhTraverse(vec3 origin, vec3 direction, float tMax, bool st
         }
       }
     } else {
-      uint nearIndex = node.leftOrFirst;
-      uint farIndex = nearIndex + 1u;
-      BvhNode nearNode = BVH_NODE(nearIndex);
-      BvhNode farNode = BVH_NODE(farIndex);
-      float nearEntry = bvhBoxEntry(nearNode.boundsMin, nearNode.boundsMax, origin, invDir, hit.t);
-      float farEntry = bvhBoxEntry(farNode.boundsMin, farNode.boundsMax, origin, invDir, hit.t);
+      BvhNode node = BVH_NODE(current);
+      float nearEntry = bvhBoxEntry(node.leftMin, node.leftMax, origin, invDir, hit.t);
+      float farEntry = bvhBoxEntry(node.rightMin, node.rightMax, origin, invDir, hit.t);
+      uint nearRef = node.leftRef;
+      uint farRef = node.rightRef;
       // Nearer first: the closest hit shrinks the search sooner, and blockers near the origin are
       // found sooner on average.
       if (farEntry < nearEntry) {
-        nearNode = farNode;
         float swapEntry = nearEntry;
         nearEntry = farEntry;
         farEntry = swapEntry;
-        farIndex = nearIndex;
+        uint swapRef = nearRef;
+        nearRef = farRef;
+        farRef = swapRef;
       }
       if (nearEntry < kBvhMiss) {
         if (farEntry < kBvhMiss) {
-          stack[stackSize] = farIndex;
+          stack[stackSize] = farRef;
           stackEntry[stackSize] = farEntry;
           ++stackSize;
         }
-        node = nearNode;
+        current = nearRef;
         continue;
       }
     }
@@ -173,7 +177,7 @@ SHARED_FN HitRecord bvhTraverse(vec3 origin, vec3 direction, float tMax, bool st
     while (stackSize > 0u) {
       --stackSize;
       if (stopAtFirstHit || stackEntry[stackSize] <= hit.t * kBvhExitScale) {
-        node = BVH_NODE(stack[stackSize]);
+        current = stack[stackSize];
         resumed = true;
         break;
       }

@@ -23,14 +23,25 @@ struct CameraGpu {
   uint height;
 };
 
-// Flattened BVH node. Interior (triCount == 0): children at leftOrFirst and leftOrFirst + 1.
-// Leaf: triangles [leftOrFirst, leftOrFirst + triCount) in BVH order.
+// Flattened BVH node: an interior node of the binary tree holding both children's boxes, so a
+// visit reads one 64-byte node (one cache line) and tests both, and a child taken from the stack
+// needs no read to know what it is. A child reference (leftRef, rightRef) is an interior child's
+// node index, or for a leaf kBvhLeafRef | triangle count << kBvhLeafCountShift | first triangle
+// (BVH order). Node 0 is the root; a tree that is one leaf is node 0 with that leaf on the left
+// and an empty leaf (no triangles) with the same box on the right (host/bvh/bvh_gpu_layout.h).
 struct BvhNode {
-  vec3 boundsMin;
-  uint leftOrFirst;
-  vec3 boundsMax;
-  uint triCount;
+  vec3 leftMin;
+  uint leftRef;
+  vec3 leftMax;
+  uint rightRef;
+  vec3 rightMin;
+  uint pad0;   // pads the node to 64 bytes; never read
+  vec3 rightMax;
+  uint pad1;
 };
+const uint kBvhLeafRef = 0x80000000u;
+const uint kBvhLeafCountShift = 28u;         // the count in bits 28-30: up to 7 (kBvhMaxLeafSize is 4)
+const uint kBvhLeafFirstMask = 0x0FFFFFFFu;  // the first triangle in bits 0-27: 268 M triangles
 
 // Intersection data of one triangle, in BVH order: v0 and the two edges v1-v0, v2-v0.
 struct TriangleGeom {

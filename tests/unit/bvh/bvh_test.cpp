@@ -165,10 +165,17 @@ std::vector<TriangleCorners> roomScene(float scale) {
 
 // ---- structural checks
 
-bool contains(const shared::BvhNode& node, vec3 p) {
-  return glm::all(glm::lessThanEqual(node.boundsMin, p)) &&
-         glm::all(glm::lessThanEqual(p, node.boundsMax));
+struct Box {
+  vec3 min, max;
+};
+
+bool contains(const Box& box, vec3 p) {
+  return glm::all(glm::lessThanEqual(box.min, p)) && glm::all(glm::lessThanEqual(p, box.max));
 }
+
+bool isLeafRef(uint32_t ref) { return (ref & shared::kBvhLeafRef) != 0; }
+uint32_t leafFirst(uint32_t ref) { return ref & shared::kBvhLeafFirstMask; }
+uint32_t leafCount(uint32_t ref) { return (ref & ~shared::kBvhLeafRef) >> shared::kBvhLeafCountShift; }
 
 void checkStructure(const Bvh& bvh, const std::vector<TriangleCorners>& input) {
   const size_t n = input.size();
@@ -196,53 +203,48 @@ void checkStructure(const Bvh& bvh, const std::vector<TriangleCorners>& input) {
     }
   }
 
-  // Walk from the root: every node reached exactly once, children adjacent and after their
-  // parent, boxes nested, leaves small, every BVH-order triangle owned by exactly one leaf.
+  // Walk from the root: every node reached exactly once, each after its parent and its left
+  // subtree right after it (depth first, left first), boxes nested, leaves small, every
+  // BVH-order triangle owned by exactly one leaf.
   std::vector<int> visits(bvh.nodes.size(), 0);
   std::vector<int> owned(n, 0);
-  struct Item { uint32_t node, depth; };
-  std::vector<Item> todo{{0, 0}};
+  struct Item { uint32_t ref, depth; Box box; };
+  const shared::BvhNode& root = bvh.nodes.at(0);
+  Box rootBox{glm::min(root.leftMin, root.rightMin), glm::max(root.leftMax, root.rightMax)};
+  std::vector<Item> todo{{0, 0, rootBox}};
   uint32_t deepest = 0;
+  uint32_t nextNode = 0;  // the index the next interior node reached (left first) must have
   while (!todo.empty()) {
     Item item = todo.back();
     todo.pop_back();
-    ASSERT_LT(item.node, bvh.nodes.size());
-    ++visits[item.node];
     deepest = std::max(deepest, item.depth);
-    const shared::BvhNode& node = bvh.nodes[item.node];
-    if (node.triCount > 0) {
-      ASSERT_LE(node.triCount, kBvhMaxLeafSize);
-      ASSERT_LE(size_t(node.leftOrFirst) + node.triCount, n);
-      for (uint32_t i = node.leftOrFirst; i < node.leftOrFirst + node.triCount; ++i) {
+    if (isLeafRef(item.ref)) {
+      const uint32_t first = leafFirst(item.ref), count = leafCount(item.ref);
+      ASSERT_LE(count, kBvhMaxLeafSize);
+      ASSERT_LE(size_t(first) + count, n);
+      for (uint32_t i = first; i < first + count; ++i) {
         ++owned[i];
         for (const vec3& p : input[bvh.triangleOrder[i]].p)
-          ASSERT_TRUE(contains(node, p)) << "leaf " << item.node << " triangle " << i;
+          ASSERT_TRUE(contains(item.box, p)) << "leaf at " << first << " triangle " << i;
       }
-    } else {
-      ASSERT_GT(node.leftOrFirst, item.node);
-      ASSERT_LT(size_t(node.leftOrFirst) + 1, bvh.nodes.size());
-      for (uint32_t c = node.leftOrFirst; c <= node.leftOrFirst + 1; ++c) {
-        ASSERT_TRUE(contains(node, bvh.nodes[c].boundsMin)) << "node " << item.node;
-        ASSERT_TRUE(contains(node, bvh.nodes[c].boundsMax)) << "node " << item.node;
-        todo.push_back({c, item.depth + 1});
-      }
+      continue;
     }
+    ASSERT_EQ(item.ref, nextNode);
+    ++nextNode;
+    ASSERT_LT(item.ref, bvh.nodes.size());
+    ++visits[item.ref];
+    const shared::BvhNode& node = bvh.nodes[item.ref];
+    Box left{node.leftMin, node.leftMax}, right{node.rightMin, node.rightMax};
+    for (const Box& child : {left, right}) {
+      ASSERT_TRUE(contains(item.box, child.min)) << "node " << item.ref;
+      ASSERT_TRUE(contains(item.box, child.max)) << "node " << item.ref;
+    }
+    todo.push_back({node.rightRef, item.depth + 1, right});
+    todo.push_back({node.leftRef, item.depth + 1, left});
   }
   for (size_t i = 0; i < visits.size(); ++i) ASSERT_EQ(visits[i], 1) << "node " << i;
-  // The layout's node order: walking left subtrees first, the child pairs come in index order
-  // (1, 3, 5, ...), each allocated when its parent is written.
-  uint32_t nextPair = 1;
-  std::vector<uint32_t> preorder{0};
-  while (!preorder.empty()) {
-    const shared::BvhNode& node = bvh.nodes[preorder.back()];
-    preorder.pop_back();
-    if (node.triCount > 0) continue;
-    ASSERT_EQ(node.leftOrFirst, nextPair);
-    nextPair += 2;
-    preorder.push_back(node.leftOrFirst + 1);
-    preorder.push_back(node.leftOrFirst);
-  }
-  EXPECT_EQ(nextPair, bvh.nodes.size());
+  // A single-leaf tree is one node whose right child is an empty leaf: depth 1 in this walk.
+  if (bvh.maxDepth == 0) deepest = 0;
   for (size_t i = 0; i < n; ++i) ASSERT_EQ(owned[i], 1) << "BVH-order triangle " << i;
   EXPECT_EQ(deepest, bvh.maxDepth);
   EXPECT_LE(bvh.maxDepth, kBvhMaxDepth);
@@ -423,7 +425,8 @@ TEST(Bvh, SingleTriangle) {
   Bvh bvh = buildBvh(tris);
   checkStructure(bvh, tris);
   ASSERT_EQ(bvh.nodes.size(), 1u);
-  EXPECT_EQ(bvh.nodes[0].triCount, 1u);
+  EXPECT_EQ(bvh.nodes[0].leftRef, shared::kBvhLeafRef | (1u << shared::kBvhLeafCountShift));
+  EXPECT_EQ(bvh.nodes[0].rightRef, shared::kBvhLeafRef);  // the empty leaf
   bind(bvh);
   HitRecord hit = shared::traceClosest(vec3(0.25f, 0.5f, 2.0f), vec3(0.0f, 0.0f, -2.0f), kFloatMax);
   EXPECT_EQ(hit.triangle, 0u);
@@ -496,9 +499,16 @@ bool sameBytes(const T& a, const T& b) {
 // for an interior node its children at leftOrFirst and leftOrFirst + 1 are the tree node's left
 // and right child; every tree node appears once.
 void expectFlatteningOf(const BvhTree& tree, const std::vector<shared::BvhNode>& nodes) {
-  ASSERT_EQ(nodes.size(), tree.nodes.size());
   std::vector<int> seen(tree.nodes.size(), 0);
-  std::vector<std::pair<uint32_t, uint32_t>> todo{{0u, 0u}};  // (tree node, GPU node)
+  size_t interior = 0;
+  for (const BvhBuildNode& node : tree.nodes) interior += node.isLeaf() ? 0 : 1;
+  ASSERT_EQ(nodes.size(), std::max<size_t>(interior, 1));
+  if (tree.nodes[0].isLeaf()) {
+    ASSERT_EQ(nodes[0].leftRef, shared::kBvhLeafRef | (tree.nodes[0].triangleCount << shared::kBvhLeafCountShift) |
+                                    tree.nodes[0].firstTriangle);
+    return;
+  }
+  std::vector<std::pair<uint32_t, uint32_t>> todo{{0u, 0u}};  // (interior tree node, GPU node)
   while (!todo.empty()) {
     auto [source, target] = todo.back();
     todo.pop_back();
@@ -507,14 +517,23 @@ void expectFlatteningOf(const BvhTree& tree, const std::vector<shared::BvhNode>&
     ++seen[source];
     const BvhBuildNode& from = tree.nodes[source];
     const shared::BvhNode& to = nodes[target];
-    ASSERT_TRUE(sameBytes(to.boundsMin, from.bounds.min)) << "node " << target;
-    ASSERT_TRUE(sameBytes(to.boundsMax, from.bounds.max)) << "node " << target;
-    ASSERT_EQ(to.triCount, from.triangleCount) << "node " << target;
-    if (from.isLeaf()) {
-      ASSERT_EQ(to.leftOrFirst, from.firstTriangle) << "node " << target;
-    } else {
-      todo.push_back({from.left, to.leftOrFirst});
-      todo.push_back({from.right, to.leftOrFirst + 1});
+    const uint32_t children[2] = {from.left, from.right};
+    const vec3 mins[2] = {to.leftMin, to.rightMin};
+    const vec3 maxs[2] = {to.leftMax, to.rightMax};
+    const uint32_t refs[2] = {to.leftRef, to.rightRef};
+    for (int c = 0; c < 2; ++c) {
+      const BvhBuildNode& child = tree.nodes[children[c]];
+      ASSERT_TRUE(sameBytes(mins[c], child.bounds.min)) << "node " << target << " child " << c;
+      ASSERT_TRUE(sameBytes(maxs[c], child.bounds.max)) << "node " << target << " child " << c;
+      if (child.isLeaf()) {
+        ++seen[children[c]];
+        ASSERT_TRUE(isLeafRef(refs[c]));
+        ASSERT_EQ(leafFirst(refs[c]), child.firstTriangle);
+        ASSERT_EQ(leafCount(refs[c]), child.triangleCount);
+      } else {
+        ASSERT_FALSE(isLeafRef(refs[c]));
+        todo.push_back({children[c], refs[c]});
+      }
     }
   }
   for (size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "tree node " << i;
