@@ -22,15 +22,17 @@ std::string mib(VkDeviceSize bytes) { return std::to_string((bytes + (1 << 20) -
 
 }  // namespace
 
-Buffer::Buffer(VulkanContext& ctx, VkDeviceSize size, const std::string& name, bool hostReadback) : ctx_(&ctx) {
+Buffer::Buffer(VulkanContext& ctx, VkDeviceSize size, const std::string& name, bool hostReadback)
+    : ctx_(&ctx), name_(name) {
   size_ = size < 16 ? 16 : (size + 15) & ~VkDeviceSize(15);
   if (size_ > ctx.maxStorageBufferRange())
     throw Error(name + " needs " + mib(size_) + " but the device's largest storage buffer is " +
                 mib(ctx.maxStorageBufferRange()) + ": use a smaller image or scene");
   VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bci.size = size_;
-  bci.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-              VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+  bci.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+              VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+              VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
   vkCheck(vkCreateBuffer(ctx.device(), &bci, nullptr, &buffer_), "vkCreateBuffer");
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx.device(), buffer_, &req);
@@ -72,6 +74,7 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
     std::swap(memory_, o.memory_);
     std::swap(size_, o.size_);
     std::swap(mapped_, o.mapped_);
+    std::swap(name_, o.name_);
   }
   return *this;
 }
@@ -112,6 +115,27 @@ void Buffer::download(void* data, VkDeviceSize bytes, VkDeviceSize offset) const
     vkCmdCopyBuffer(cmd, buffer_, staging.handle(), 1, &region);
   });
   staging.download(data, bytes);
+}
+
+VkBufferView makeTexelView(VulkanContext& ctx, const Buffer& buffer) {
+  constexpr VkFormat kFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+  constexpr VkDeviceSize kTexelBytes = 16;
+  VkFormatProperties fp;
+  vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), kFormat, &fp);
+  if (!(fp.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT))
+    throw Error("the Vulkan device cannot read RGBA32F texel buffers, which " + buffer.name() + " needs");
+  const VkDeviceSize texels = buffer.size() / kTexelBytes;
+  if (texels > ctx.properties().limits.maxTexelBufferElements)
+    throw Error(buffer.name() + " needs " + std::to_string(texels) + " texels but the device views at most " +
+                std::to_string(ctx.properties().limits.maxTexelBufferElements) + ": use a smaller scene");
+  VkBufferViewCreateInfo vci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+  vci.buffer = buffer.handle();
+  vci.format = kFormat;
+  vci.offset = 0;
+  vci.range = texels * kTexelBytes;
+  VkBufferView view = VK_NULL_HANDLE;
+  vkCheck(vkCreateBufferView(ctx.device(), &vci, nullptr, &view), "vkCreateBufferView");
+  return view;
 }
 
 }  // namespace mixtrace

@@ -1,5 +1,6 @@
 #pragma once
-// A storage buffer and its memory. Prefers memory that is both device-local and host-visible
+// A buffer and its memory, usable as a storage buffer or (through makeTexelView) a uniform texel
+// buffer. Prefers memory that is both device-local and host-visible
 // (all of lavapipe's memory, resizable-BAR GPUs) so uploads are a memcpy; otherwise device-local
 // memory filled through a staging buffer.
 #include <cstdint>
@@ -25,6 +26,7 @@ class Buffer {
 
   VkBuffer handle() const { return buffer_; }
   VkDeviceSize size() const { return size_; }
+  const std::string& name() const { return name_; }
 
   void upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
   void download(void* data, VkDeviceSize bytes, VkDeviceSize offset = 0) const;
@@ -43,7 +45,13 @@ class Buffer {
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   VkDeviceSize size_ = 0;
   void* mapped_ = nullptr;
+  std::string name_;
 };
+
+// A view of the whole of `buffer` as RGBA32F texels, for a uniform texel buffer descriptor (a
+// TEXELS row, shaders/shared/buffer_table.h); the caller destroys it. Throws mixtrace::Error when
+// the device cannot view that many texels at once or cannot read RGBA32F texel buffers.
+VkBufferView makeTexelView(VulkanContext& ctx, const Buffer& buffer);
 
 // A buffer holding `v` (at least one element's worth of bytes, so empty inputs stay bindable).
 template <class T> Buffer makeBuffer(VulkanContext& ctx, const std::vector<T>& v, const std::string& name) {

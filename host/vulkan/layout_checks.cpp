@@ -21,6 +21,7 @@
 #include "shared/display.h"
 #include "shared/layouts.h"
 #include "tests/cell_lookup_interface.h"
+#include "vulkan/buffer_rows.h"
 #include "tests/pair_lookup_interface.h"
 #include "tests/trace_rays_interface.h"
 #include "viewer/display_interface.h"
@@ -82,10 +83,7 @@ PUSH_CONSTANTS_FIT(PairLookupConstants)
 // Binding numbers: one space for every buffer table (shaders/shared/buffer_table.h), so no two
 // rows may share a number (a pass listing both would bind one buffer in place of the other).
 #define ROW_BINDING(ID, name, binding, access, Type, extent, label) binding,
-constexpr uint32_t kRowBindings[] = {SCENE_BUFFERS(ROW_BINDING) PATH_STATE_BUFFERS(ROW_BINDING)
-                                         CMS_STATE_BUFFERS(ROW_BINDING) METHOD_BUFFERS(ROW_BINDING)
-                                         BUFFER_WINDOW(ROW_BINDING) PAIR_LOOKUP_BUFFERS(ROW_BINDING)
-                                         BUFFER_SPARSE_SCRATCH(ROW_BINDING) BUFFER_TECHNIQUE_CLUSTERS(ROW_BINDING)};
+constexpr uint32_t kRowBindings[] = {EVERY_BUFFER_ROW(ROW_BINDING)};
 #undef ROW_BINDING
 constexpr bool bindingsDistinct() {
   for (size_t i = 0; i < std::size(kRowBindings); ++i)
@@ -94,6 +92,12 @@ constexpr bool bindingsDistinct() {
   return true;
 }
 static_assert(bindingsDistinct(), "two buffer rows share a binding number");
+
+// The one texel row's elements are whole RGBA32F texels (the GLSL accessor assembles a node from
+// four, shaders/gpu/buffers.glsl).
+static_assert(sizeof(shared::BvhNode) == 4 * 16, "a BVH node is four RGBA32F texels");
+static_assert(isTexelBinding(shared::BINDING_BVH_NODES) && !isTexelBinding(shared::BINDING_TRIANGLES),
+              "the BVH nodes are read as texels, the rest as storage buffers");
 
 }  // namespace
 }  // namespace mixtrace

@@ -6,27 +6,41 @@
 #include "vulkan/buffer.h"
 #include "vulkan/check.h"
 #include "vulkan/context.h"
+#include "vulkan/buffer_rows.h"
 #include "vulkan/embedded_shaders.h"
 
 namespace mixtrace {
+namespace {
+
+VkDescriptorType descriptorTypeOf(uint32_t binding) {
+  return isTexelBinding(binding) ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
+}  // namespace
 
 DescriptorSet::DescriptorSet(VulkanContext& ctx, const std::vector<uint32_t>& bindingNumbers,
                              uint32_t pushConstantBytes)
     : ctx_(ctx), bindings_(bindingNumbers), pushConstantBytes_(pushConstantBytes) {
   const uint32_t bindingCount = uint32_t(bindings_.size());
   std::vector<VkDescriptorSetLayoutBinding> bindings(bindingCount);
-  for (uint32_t i = 0; i < bindingCount; ++i)
-    bindings[i] = {bindings_[i], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  uint32_t texelBindings = 0;
+  for (uint32_t i = 0; i < bindingCount; ++i) {
+    bindings[i] = {bindings_[i], descriptorTypeOf(bindings_[i]), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    texelBindings += isTexelBinding(bindings_[i]) ? 1 : 0;
+  }
   VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   lci.bindingCount = bindingCount;
   lci.pBindings = bindings.data();
   vkCheck(vkCreateDescriptorSetLayout(ctx.device(), &lci, nullptr, &layout_), "vkCreateDescriptorSetLayout");
 
-  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bindingCount};
+  std::vector<VkDescriptorPoolSize> sizes;
+  if (bindingCount > texelBindings) sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bindingCount - texelBindings});
+  if (texelBindings > 0) sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, texelBindings});
+  if (sizes.empty()) sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1});  // a pool needs one size
   VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pci.maxSets = 1;
-  pci.poolSizeCount = 1;
-  pci.pPoolSizes = &size;
+  pci.poolSizeCount = uint32_t(sizes.size());
+  pci.pPoolSizes = sizes.data();
   vkCheck(vkCreateDescriptorPool(ctx.device(), &pci, nullptr, &pool_), "vkCreateDescriptorPool");
   VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   ai.descriptorPool = pool_;
@@ -44,6 +58,7 @@ DescriptorSet::DescriptorSet(VulkanContext& ctx, const std::vector<uint32_t>& bi
 }
 
 DescriptorSet::~DescriptorSet() {
+  for (const auto& [binding, view] : views_) vkDestroyBufferView(ctx_.device(), view, nullptr);
   vkDestroyPipelineLayout(ctx_.device(), pipelineLayout_, nullptr);
   vkDestroyDescriptorPool(ctx_.device(), pool_, nullptr);
   vkDestroyDescriptorSetLayout(ctx_.device(), layout_, nullptr);
@@ -52,14 +67,25 @@ DescriptorSet::~DescriptorSet() {
 void DescriptorSet::bind(uint32_t binding, const Buffer& buffer) {
   if (std::find(bindings_.begin(), bindings_.end(), binding) == bindings_.end())
     throw Error("internal: binding " + std::to_string(binding) + " is not in this descriptor set");
-  VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   w.dstSet = set_;
   w.dstBinding = binding;
   w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  w.pBufferInfo = &info;
+  w.descriptorType = descriptorTypeOf(binding);
+  VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
+  VkBufferView view = VK_NULL_HANDLE;
+  if (isTexelBinding(binding)) {
+    view = makeTexelView(ctx_, buffer);
+    w.pTexelBufferView = &view;
+  } else {
+    w.pBufferInfo = &info;
+  }
   vkUpdateDescriptorSets(ctx_.device(), 1, &w, 0, nullptr);
+  if (view != VK_NULL_HANDLE) {
+    auto& slot = views_[binding];
+    if (slot != VK_NULL_HANDLE) vkDestroyBufferView(ctx_.device(), slot, nullptr);
+    slot = view;
+  }
 }
 
 void DescriptorSet::bindAll(const BufferBindings& buffers) {

@@ -1,6 +1,6 @@
 #pragma once
-// A descriptor set of storage buffers at given binding numbers (the rows a pass's interface
-// header lists, shaders/shared/buffer_table.h) with its pipeline layout, and compute pipelines
+// A descriptor set of buffers at given binding numbers (the rows a pass's interface header lists,
+// shaders/shared/buffer_table.h: storage buffers, and uniform texel buffers for TEXELS rows) with its pipeline layout, and compute pipelines
 // built from embedded SPIR-V with specialization constants. host/vulkan/compute_pass.h puts the
 // two together for one pass.
 #include <cstdint>
@@ -20,8 +20,9 @@ using BufferBindings = std::map<uint32_t, const Buffer*>;
 
 class DescriptorSet {
  public:
-  // One storage buffer at each of `bindings` (any numbers, each once), and a pipeline layout with
-  // this set and a push-constant range of pushConstantBytes (0: none).
+  // One buffer at each of `bindings` (any numbers, each once; a TEXELS row's as a uniform texel
+  // buffer, the others as storage buffers), and a pipeline layout with this set and a
+  // push-constant range of pushConstantBytes (0: none).
   DescriptorSet(VulkanContext& ctx, const std::vector<uint32_t>& bindings, uint32_t pushConstantBytes);
   ~DescriptorSet();
   DescriptorSet(const DescriptorSet&) = delete;
@@ -43,6 +44,7 @@ class DescriptorSet {
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+  std::map<uint32_t, VkBufferView> views_;   // the texel views bound, by binding; owned
 };
 
 class ComputePipeline {

@@ -12,7 +12,7 @@ namespace {
 enum class Extent { ONE, PER_PATH, TWO_PER_PATH, SHADOW_SLOTS, PER_PIXEL, TWO_PER_PIXEL, CELL_SLOTS, CELL_STATS, CELL_SOLUTIONS,
                     PAIR_SLOTS, PAIR_STATS, PAIR_ALPHAS, PAIR_COUNTER_SLOTS, PAIR_OCCUPIED_SLOTS, CMS_PATHS, CMS_PIXELS, UPLOADED,
                     WINDOW_PIXELS, AOV_PIXELS };
-enum class Access { READ_ONLY, READ_WRITE, READ_BACK };
+enum class Access { READ_ONLY, READ_WRITE, READ_BACK, TEXELS };
 
 size_t elements(Extent extent, const BufferExtents& e) {
   const size_t pixels = size_t(e.width) * e.height;

@@ -57,15 +57,38 @@ layout(push_constant, scalar) uniform Push { PASS_CONSTANTS pc; };
 #define BUFFER_ELEMENTS_CMS_PIXELS []
 #define BUFFER_ELEMENTS_UPLOADED []
 #define BUFFER_ELEMENTS_WINDOW_PIXELS []
-#define DECLARE_BUFFER(ID, name, bindingNumber, access, Type, extent, label) \
+#define DECLARE_STORAGE_BUFFER(name, bindingNumber, access, Type, extent) \
   layout(scalar, binding = bindingNumber) BUFFER_ACCESS_##access buffer name##Buffer { Type name BUFFER_ELEMENTS_##extent; };
+#define DECLARE_BUFFER_READ_ONLY(name, bindingNumber, Type, extent) DECLARE_STORAGE_BUFFER(name, bindingNumber, READ_ONLY, Type, extent)
+#define DECLARE_BUFFER_READ_WRITE(name, bindingNumber, Type, extent) DECLARE_STORAGE_BUFFER(name, bindingNumber, READ_WRITE, Type, extent)
+#define DECLARE_BUFFER_READ_BACK(name, bindingNumber, Type, extent) DECLARE_STORAGE_BUFFER(name, bindingNumber, READ_BACK, Type, extent)
+// A TEXELS row: RGBA32F texels; the accessor below assembles its Type from them.
+#define DECLARE_BUFFER_TEXELS(name, bindingNumber, Type, extent) layout(binding = bindingNumber) uniform samplerBuffer name;
+#define DECLARE_BUFFER(ID, name, bindingNumber, access, Type, extent, label) \
+  DECLARE_BUFFER_##access(name, bindingNumber, Type, extent)
 
 PASS_BUFFERS(DECLARE_BUFFER)
 #ifdef PASS_UNREAD_BUFFERS
 PASS_UNREAD_BUFFERS(DECLARE_BUFFER)
 #endif
 
-#define BVH_NODE(i) bvhNodes[i]
+// A BVH node from its four texels (shared/layouts.h BvhNode; the references are the w components'
+// bits; the last texel's w is padding).
+BvhNode bvhNodeFromTexels(vec4 a, vec4 b, vec4 c, vec4 d) {
+  BvhNode node;
+  node.leftMin = a.xyz;
+  node.leftRef = floatBitsToUint(a.w);
+  node.leftMax = b.xyz;
+  node.rightRef = floatBitsToUint(b.w);
+  node.rightMin = c.xyz;
+  node.pad0 = 0u;
+  node.rightMax = d.xyz;
+  node.pad1 = 0u;
+  return node;
+}
+#define BVH_NODE(i) \
+  bvhNodeFromTexels(texelFetch(bvhNodes, int(4u * (i))), texelFetch(bvhNodes, int(4u * (i) + 1u)), \
+                    texelFetch(bvhNodes, int(4u * (i) + 2u)), texelFetch(bvhNodes, int(4u * (i) + 3u)))
 #define BVH_TRIANGLE(i) triangles[i]
 #define TRIANGLE(i) triangles[i]
 #define TRIANGLE_SHADING(i) triangleShading[i]

@@ -1,5 +1,5 @@
 // The row format of the buffer tables (scene_buffers.h, method_buffers.h, path_state.h, cms_state.h, and the rows
-// of single passes such as the viewer's display): every storage buffer a pass can bind is one row
+// of single passes such as the viewer's display): every buffer a pass can bind is one row
 //   BUFFER_<ID>(X) -> X(ID, name, binding, access, Type, extent, label)
 // and a pass's interface header lists the rows it reads (shaders/wavefront/*_interface.h). From
 // a row come, through the X the user passes:
@@ -17,7 +17,10 @@
 // lavapipe) applies to one pass, not to the sum of all.
 //
 // access: READ_ONLY (declared readonly), READ_WRITE, READ_BACK (read-write, and read by the host
-// after a submission: allocated where the host reads it cheaply).
+// after a submission: allocated where the host reads it cheaply), TEXELS (read-only, bound as a
+// uniform texel buffer of RGBA32F texels and read with texelFetch: Type must be a whole number of
+// 16-byte texels; lavapipe fetches texels with vector gathers where it loads a storage buffer one
+// lane at a time, which made the BVH walk 16-30 % faster there; benchmarks/README.md).
 // extent (elements): ONE (a single struct), PER_PATH, TWO_PER_PATH (ping-pong halves), PER_PIXEL,
 // TWO_PER_PIXEL, CELL_SLOTS / CELL_STATS / CELL_SOLUTIONS (the CMS cell table, x the per-cell
 // strides of shared/cms_layouts.h), CMS_PATHS / CMS_PIXELS (per path / pixel when the method
@@ -26,6 +29,12 @@
 #ifndef MIXTRACE_SHARED_BUFFER_TABLE_H
 #define MIXTRACE_SHARED_BUFFER_TABLE_H
 #include "shared/dialect.h"
+
+// Whether a row of this access is a uniform texel buffer (TEXELS) rather than a storage buffer.
+#define BUFFER_IS_TEXELS_READ_ONLY false
+#define BUFFER_IS_TEXELS_READ_WRITE false
+#define BUFFER_IS_TEXELS_READ_BACK false
+#define BUFFER_IS_TEXELS_TEXELS true
 
 // X for a table: declares the row's binding number as BINDING_<ID>.
 #define BUFFER_BINDING_CONSTANT(ID, name, binding, access, Type, extent, label) const uint BINDING_##ID = uint(binding);

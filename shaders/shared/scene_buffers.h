@@ -6,7 +6,8 @@
 #include "shared/layouts.h"
 
 #define BUFFER_CAMERA(X) X(CAMERA, camera, 0, READ_ONLY, CameraGpu, ONE, "camera")
-#define BUFFER_BVH_NODES(X) X(BVH_NODES, bvhNodes, 1, READ_ONLY, BvhNode, UPLOADED, "BVH nodes")
+// The BVH nodes are read as texels (four per node): the traversal fetches them per lane, everywhere.
+#define BUFFER_BVH_NODES(X) X(BVH_NODES, bvhNodes, 1, TEXELS, BvhNode, UPLOADED, "BVH nodes")
 #define BUFFER_TRIANGLES(X) X(TRIANGLES, triangles, 2, READ_ONLY, TriangleGeom, UPLOADED, "triangles")
 #define BUFFER_TRIANGLE_SHADING(X) \
   X(TRIANGLE_SHADING, triangleShading, 3, READ_ONLY, TriangleShading, UPLOADED, "triangle shading data")
