@@ -118,12 +118,12 @@ void Buffer::download(void* data, VkDeviceSize bytes, VkDeviceSize offset) const
 }
 
 VkBufferView makeTexelView(VulkanContext& ctx, const Buffer& buffer) {
-  constexpr VkFormat kFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+  constexpr VkFormat kFormat = VK_FORMAT_R32G32B32A32_UINT;
   constexpr VkDeviceSize kTexelBytes = 16;
   VkFormatProperties fp;
   vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), kFormat, &fp);
   if (!(fp.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT))
-    throw Error("the Vulkan device cannot read RGBA32F texel buffers, which " + buffer.name() + " needs");
+    throw Error("the Vulkan device cannot read RGBA32UI texel buffers, which " + buffer.name() + " needs");
   const VkDeviceSize texels = buffer.size() / kTexelBytes;
   if (texels > ctx.properties().limits.maxTexelBufferElements)
     throw Error(buffer.name() + " needs " + std::to_string(texels) + " texels but the device views at most " +

@@ -48,9 +48,9 @@ class Buffer {
   std::string name_;
 };
 
-// A view of the whole of `buffer` as RGBA32F texels, for a uniform texel buffer descriptor (a
+// A view of the whole of `buffer` as RGBA32UI texels (the words' bits, whatever they hold), for a uniform texel buffer descriptor (a
 // TEXELS row, shaders/shared/buffer_table.h); the caller destroys it. Throws mixtrace::Error when
-// the device cannot view that many texels at once or cannot read RGBA32F texel buffers.
+// the device cannot view that many texels at once or cannot read RGBA32UI texel buffers.
 VkBufferView makeTexelView(VulkanContext& ctx, const Buffer& buffer);
 
 // A buffer holding `v` (at least one element's worth of bytes, so empty inputs stay bindable).

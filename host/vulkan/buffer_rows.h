@@ -12,15 +12,16 @@
 #include "shared/path_state.h"
 #include "shared/scene_buffers.h"
 #include "tests/pair_lookup_interface.h"
+#include "tests/texel_rows_interface.h"
 #include "viewer/display_interface.h"
 
 #define EVERY_BUFFER_ROW(X)                                                                          \
   SCENE_BUFFERS(X) PATH_STATE_BUFFERS(X) CMS_STATE_BUFFERS(X) METHOD_BUFFERS(X) BUFFER_WINDOW(X) \
-  PAIR_LOOKUP_BUFFERS(X) BUFFER_SPARSE_SCRATCH(X) BUFFER_TECHNIQUE_CLUSTERS(X)
+  PAIR_LOOKUP_BUFFERS(X) BUFFER_SPARSE_SCRATCH(X) BUFFER_TECHNIQUE_CLUSTERS(X) TEXEL_ROWS_OUT_BUFFERS(X)
 
 namespace mixtrace {
 
-// Whether `binding` is a TEXELS row's: bound as a uniform texel buffer of RGBA32F texels.
+// Whether `binding` is a TEXELS row's: bound as a uniform texel buffer of RGBA32UI texels.
 constexpr bool isTexelBinding(uint32_t binding) {
 #define ROW_IS_TEXELS(ID, name, number, access, Type, extent, label) \
   if (binding == uint32_t(number)) return BUFFER_IS_TEXELS_##access;

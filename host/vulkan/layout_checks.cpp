@@ -23,6 +23,7 @@
 #include "tests/cell_lookup_interface.h"
 #include "vulkan/buffer_rows.h"
 #include "tests/pair_lookup_interface.h"
+#include "tests/texel_rows_interface.h"
 #include "tests/trace_rays_interface.h"
 #include "viewer/display_interface.h"
 #include "wavefront/accumulate_interface.h"
@@ -78,6 +79,7 @@ PUSH_CONSTANTS_FIT(DisplayConstants)
 PUSH_CONSTANTS_FIT(TraceRaysConstants)
 PUSH_CONSTANTS_FIT(CellLookupConstants)
 PUSH_CONSTANTS_FIT(PairLookupConstants)
+PUSH_CONSTANTS_FIT(TexelRowsConstants)
 #undef PUSH_CONSTANTS_FIT
 
 // Binding numbers: one space for every buffer table (shaders/shared/buffer_table.h), so no two
@@ -93,9 +95,13 @@ constexpr bool bindingsDistinct() {
 }
 static_assert(bindingsDistinct(), "two buffer rows share a binding number");
 
-// The one texel row's elements are whole RGBA32F texels (the GLSL accessor assembles a node from
+// The one texel row's elements are whole RGBA32UI texels (the GLSL accessor assembles a node from
 // four, shaders/gpu/buffers.glsl).
-static_assert(sizeof(shared::BvhNode) == 4 * 16, "a BVH node is four RGBA32F texels");
+static_assert(sizeof(shared::BvhNode) == 4 * 16, "a BVH node is four RGBA32UI texels");
+static_assert(sizeof(shared::TriangleShading) == 7 * 16, "a triangle's shading data is seven RGBA32UI texels");
+static_assert(sizeof(shared::MaterialGpu) == 5 * 16, "a material is five RGBA32UI texels");
+static_assert(sizeof(shared::EmitterGpu) == 16, "an emitter is one RGBA32UI texel");
+static_assert(sizeof(shared::LightBvhNodeGpu) == 4 * 16, "a light BVH node is four RGBA32UI texels");
 static_assert(isTexelBinding(shared::BINDING_BVH_NODES) && !isTexelBinding(shared::BINDING_TRIANGLES),
               "the BVH nodes are read as texels, the rest as storage buffers");
 

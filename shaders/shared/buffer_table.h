@@ -18,7 +18,7 @@
 //
 // access: READ_ONLY (declared readonly), READ_WRITE, READ_BACK (read-write, and read by the host
 // after a submission: allocated where the host reads it cheaply), TEXELS (read-only, bound as a
-// uniform texel buffer of RGBA32F texels and read with texelFetch: Type must be a whole number of
+// uniform texel buffer of RGBA32UI texels and read with texelFetch: Type must be a whole number of
 // 16-byte texels; lavapipe fetches texels with vector gathers where it loads a storage buffer one
 // lane at a time, which made the BVH walk 16-30 % faster there; benchmarks/README.md).
 // extent (elements): ONE (a single struct), PER_PATH, TWO_PER_PATH (ping-pong halves), PER_PIXEL,

@@ -66,6 +66,8 @@ struct TriangleShading {
   uint tangent0;       // the tangent at each corner (shared/tangent_frame.h); 0 where none
   uint tangent1;
   uint tangent2;
+  uint pad0;           // pads the struct to seven 16-byte texels (a TEXELS row); never read
+  uint pad1;
 };
 
 const uint kMaterialDoubleSided = 1u;

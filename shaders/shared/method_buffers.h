@@ -13,7 +13,7 @@
 
 // LightBvhNodeGpu: the light BVH of method pt-bvh (scene/light_bvh.h); one placeholder node for the
 // other methods, so that the binding is valid.
-#define BUFFER_LIGHT_BVH(X) X(LIGHT_BVH, lightBvh, 32, READ_ONLY, LightBvhNodeGpu, UPLOADED, "light BVH")
+#define BUFFER_LIGHT_BVH(X) X(LIGHT_BVH, lightBvh, 32, TEXELS, LightBvhNodeGpu, UPLOADED, "light BVH")
 
 #define METHOD_BUFFERS(X) BUFFER_LIGHT_SELECTION(X) BUFFER_LIGHT_BVH(X)
 

@@ -6,16 +6,17 @@
 #include "shared/layouts.h"
 
 #define BUFFER_CAMERA(X) X(CAMERA, camera, 0, READ_ONLY, CameraGpu, ONE, "camera")
-// The BVH nodes are read as texels (four per node): the traversal fetches them per lane, everywhere.
+// The rows read per lane at divergent indices are TEXELS (shared/buffer_table.h): lavapipe gathers
+// texels, where it loads storage buffers one lane at a time.
 #define BUFFER_BVH_NODES(X) X(BVH_NODES, bvhNodes, 1, TEXELS, BvhNode, UPLOADED, "BVH nodes")
 #define BUFFER_TRIANGLES(X) X(TRIANGLES, triangles, 2, READ_ONLY, TriangleGeom, UPLOADED, "triangles")
 #define BUFFER_TRIANGLE_SHADING(X) \
-  X(TRIANGLE_SHADING, triangleShading, 3, READ_ONLY, TriangleShading, UPLOADED, "triangle shading data")
-#define BUFFER_MATERIALS(X) X(MATERIALS, materials, 4, READ_ONLY, MaterialGpu, UPLOADED, "materials")
+  X(TRIANGLE_SHADING, triangleShading, 3, TEXELS, TriangleShading, UPLOADED, "triangle shading data")
+#define BUFFER_MATERIALS(X) X(MATERIALS, materials, 4, TEXELS, MaterialGpu, UPLOADED, "materials")
 #define BUFFER_TEXTURES(X) X(TEXTURES, textures, 5, READ_ONLY, TextureGpu, UPLOADED, "texture table")
 #define BUFFER_TEXELS(X) X(TEXELS, texels, 6, READ_ONLY, uint, UPLOADED, "texels")
 #define BUFFER_LIGHTS(X) X(LIGHTS, lights, 7, READ_ONLY, LightGpu, UPLOADED, "lights")
-#define BUFFER_EMITTERS(X) X(EMITTERS, emitters, 8, READ_ONLY, EmitterGpu, UPLOADED, "emitters")
+#define BUFFER_EMITTERS(X) X(EMITTERS, emitters, 8, TEXELS, EmitterGpu, UPLOADED, "emitters")
 // The environment light's map and distribution (shared/environment_layout.h); a header saying
 // "none" where the scene has none.
 #define BUFFER_ENVIRONMENT(X) X(ENVIRONMENT, environment, 48, READ_ONLY, float, UPLOADED, "environment map")

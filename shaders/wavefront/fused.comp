@@ -7,7 +7,7 @@
 #define PASS_BUFFERS FUSED_BUFFERS
 #define PASS_CONSTANTS FusedConstants
 #include "gpu/buffers.glsl"
-#define LIGHT_BVH(i) lightBvh[i]
+#define LIGHT_BVH(i) LIGHT_BVH_FROM_TEXELS(i)
 #define LIGHT_SELECT_BVH (pc.lightSelection == kLightSelectBvh)
 #define EMITTERS_UNIFORM (pc.lightSelection == kLightSelectUniform)
 #include "shared/alpha.h"

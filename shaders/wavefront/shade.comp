@@ -18,7 +18,7 @@
 #include "gpu/cms_buffers.glsl"
 #include "gpu/buffers.glsl"
 // pt-bvh picks lights by the method's light BVH (shared/light_bvh.h, through shared/lights.h).
-#define LIGHT_BVH(i) lightBvh[i]
+#define LIGHT_BVH(i) LIGHT_BVH_FROM_TEXELS(i)
 #define LIGHT_SELECT_BVH (pc.lightSelection == kLightSelectBvh)
 #define EMITTERS_UNIFORM (pc.lightSelection == kLightSelectUniform)
 #include "gpu/cms_statistics.glsl"
@@ -237,7 +237,7 @@ void main() {
   vec3 dir = rayDirection[path];
   vec3 beta = throughput[path];
   float prevPdfB = misPdf[path];   // p_B of the BSDF sample that made this ray; 0 for camera rays
-  bool hitEmitter = hit.triangle != kNoHit && HAS_AREA_LIGHTS && triangleShading[hit.triangle].emitter >= 0;
+  bool hitEmitter = hit.triangle != kNoHit && HAS_AREA_LIGHTS && TRIANGLE_SHADING(hit.triangle).emitter >= 0;
   bool escaped = hit.triangle == kNoHit && HAS_ENVIRONMENT && hasEnvironmentLight();
   vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -dir)
                        : escaped ? environmentRadiance(dir) : vec3(0.0);

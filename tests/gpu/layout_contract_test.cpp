@@ -24,6 +24,7 @@
 #include "support/spirv_reader.h"
 #include "tests/cell_lookup_interface.h"
 #include "tests/pair_lookup_interface.h"
+#include "tests/texel_rows_interface.h"
 #include "tests/trace_rays_interface.h"
 #include "viewer/display_interface.h"
 #include "vulkan/buffer_rows.h"
@@ -120,18 +121,17 @@ TEST(LayoutContract, GlslOffsetsAndStridesEqualCpp) {
       for (uint32_t stride : spirv.arrayStridesOf(s.id)) EXPECT_EQ(size_t(stride), c.size) << where << ": array stride";
     }
   }
-  // The rows read as texels (TEXELS: the BVH nodes) lie in no GLSL buffer: shaders/gpu/buffers.glsl
-  // assembles them from RGBA32F texels, which the GPU traversal tests check against the CPU's
-  // (tests/gpu/gpu_bvh_test.cpp).
+  // The structs of rows read as texels (TEXELS) need lie in no GLSL buffer: shaders/gpu/buffers.glsl
+  // assembles them from RGBA32UI texels, which tests/gpu/texel_rows_test.cpp checks bit for bit
+  // (its kernel writes each to a buffer, so their offsets are checked here too).
   std::set<std::string> texelTypes;
 #define TEXEL_ROW_TYPE(ID, name, binding, access, Type, extent, label) \
   if (BUFFER_IS_TEXELS_##access) texelTypes.insert(#Type);
   EVERY_BUFFER_ROW(TEXEL_ROW_TYPE)
 #undef TEXEL_ROW_TYPE
-  EXPECT_EQ(texelTypes, std::set<std::string>{"BvhNode"});
+  EXPECT_EQ(texelTypes, (std::set<std::string>{"BvhNode", "TriangleShading", "MaterialGpu", "EmitterGpu", "LightBvhNodeGpu"}));
   for (const auto& [name, layout] : cpp) {
-    if (texelTypes.count(name)) EXPECT_FALSE(seen.count(name)) << name << " is read as texels, yet lies in a buffer";
-    else EXPECT_TRUE(seen.count(name)) << name << " was found in no embedded shader";
+    if (!texelTypes.count(name)) EXPECT_TRUE(seen.count(name)) << name << " was found in no embedded shader";
   }
 }
 
@@ -182,6 +182,7 @@ std::map<std::string, Interface> interfaces() {
       {"trace_rays", INTERFACE(TRACE_RAYS_BUFFERS, TraceRaysConstants)},
       {"cell_lookup", INTERFACE(CELL_LOOKUP_BUFFERS, CellLookupConstants)},
       {"pair_lookup", INTERFACE(PAIR_LOOKUP_BUFFERS, PairLookupConstants)},
+      {"texel_rows", INTERFACE(TEXEL_ROWS_BUFFERS, TexelRowsConstants)},
   };
 #undef INTERFACE
 #undef INTERFACE_WITH_UNREAD

@@ -1,0 +1,76 @@
+// The rows the passes read as texels (access TEXELS: BVH nodes, triangle shading data, materials,
+// emitters, light BVH nodes) come back from their GLSL accessors bit for bit as the host wrote
+// them: random words in every member, including the bit patterns of NaNs, infinities and -1,
+// which a float view could alter (shaders/tests/texel_rows.comp).
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "shared/layouts.h"
+#include "tests/texel_rows_interface.h"
+#include "vulkan/buffer.h"
+#include "vulkan/buffer_rows.h"
+#include "vulkan/compute_pass.h"
+#include "vulkan/context.h"
+
+namespace mixtrace {
+namespace {
+
+// n elements of T filled with random words, every 8th word one of the special patterns.
+template <class T> std::vector<T> randomElements(size_t n, std::mt19937& rng) {
+  static_assert(sizeof(T) % 4 == 0, "whole words");
+  const uint32_t special[] = {0xffffffffu, 0x7fc00001u, 0xff800000u, 0x7f800000u, 0x80000000u, 0x00000001u};
+  std::vector<uint32_t> words(n * sizeof(T) / 4);
+  for (size_t i = 0; i < words.size(); ++i) words[i] = i % 8 == 3 ? special[(i / 8) % std::size(special)] : rng();
+  std::vector<T> out(n);
+  std::memcpy(out.data(), words.data(), words.size() * 4);
+  return out;
+}
+
+template <class T> void expectSameBits(const Buffer& buffer, const std::vector<T>& expected, const char* row) {
+  std::vector<T> got = buffer.downloadAll<T>();
+  ASSERT_GE(got.size(), expected.size()) << row;
+  for (size_t i = 0; i < expected.size(); ++i)
+    ASSERT_EQ(std::memcmp(&got[i], &expected[i], sizeof(T)), 0) << row << " element " << i;
+}
+
+TEST(TexelRows, EveryAccessorReadsBackTheHostsBits) {
+  VulkanContext ctx(ContextOptions{"", true});
+  std::mt19937 rng(7);
+  const size_t n = 300;
+  auto nodes = randomElements<shared::BvhNode>(n, rng);
+  auto shading = randomElements<shared::TriangleShading>(n, rng);
+  auto materials = randomElements<shared::MaterialGpu>(n, rng);
+  auto emitters = randomElements<shared::EmitterGpu>(n, rng);
+  auto lightNodes = randomElements<shared::LightBvhNodeGpu>(n, rng);
+  Buffer in[] = {makeBuffer(ctx, nodes, "nodes"), makeBuffer(ctx, shading, "shading"),
+                 makeBuffer(ctx, materials, "materials"), makeBuffer(ctx, emitters, "emitters"),
+                 makeBuffer(ctx, lightNodes, "light nodes")};
+  Buffer out[] = {Buffer(ctx, n * sizeof(shared::BvhNode), "out"), Buffer(ctx, n * sizeof(shared::TriangleShading), "out"),
+                  Buffer(ctx, n * sizeof(shared::MaterialGpu), "out"), Buffer(ctx, n * sizeof(shared::EmitterGpu), "out"),
+                  Buffer(ctx, n * sizeof(shared::LightBvhNodeGpu), "out")};
+  const uint32_t inBindings[] = {shared::BINDING_BVH_NODES, shared::BINDING_TRIANGLE_SHADING, shared::BINDING_MATERIALS,
+                                 shared::BINDING_EMITTERS, shared::BINDING_LIGHT_BVH};
+  const uint32_t outBindings[] = {shared::BINDING_BVH_NODES_OUT, shared::BINDING_TRIANGLE_SHADING_OUT,
+                                  shared::BINDING_MATERIALS_OUT, shared::BINDING_EMITTERS_OUT,
+                                  shared::BINDING_LIGHT_BVH_OUT};
+  ComputePass pass(ctx, "texel_rows", BINDINGS_OF(TEXEL_ROWS_BUFFERS), sizeof(shared::TexelRowsConstants), {});
+  for (int r = 0; r < 5; ++r) {
+    EXPECT_TRUE(isTexelBinding(inBindings[r])) << "row " << r << " is read as texels";
+    pass.bind(inBindings[r], in[r]);
+    pass.bind(outBindings[r], out[r]);
+  }
+  shared::TexelRowsConstants pc{uint32_t(n)};
+  ctx.submitAndWait([&](VkCommandBuffer cmd) { pass.dispatch(cmd, &pc, sizeof(pc), workgroupsFor(uint32_t(n))); });
+  expectSameBits(out[0], nodes, "BVH nodes");
+  expectSameBits(out[1], shading, "triangle shading");
+  expectSameBits(out[2], materials, "materials");
+  expectSameBits(out[3], emitters, "emitters");
+  expectSameBits(out[4], lightNodes, "light BVH nodes");
+  EXPECT_EQ(ctx.validationErrors(), 0u);
+}
+
+}  // namespace
+}  // namespace mixtrace
