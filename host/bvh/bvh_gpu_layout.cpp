@@ -10,16 +10,11 @@
 namespace mixtrace {
 namespace {
 
-// The reference to a leaf's triangles [first, first + count) (shared/layouts.h).
-uint32_t leafRef(uint32_t first, uint32_t count) {
-  return shared::kBvhLeafRef | (count << shared::kBvhLeafCountShift) | first;
-}
-
 uint32_t flattenInterior(const BvhTree& tree, uint32_t source, std::vector<shared::BvhNode>& out);
 
 uint32_t childRef(const BvhTree& tree, uint32_t child, std::vector<shared::BvhNode>& out) {
   const BvhBuildNode& node = tree.nodes[child];
-  return node.isLeaf() ? leafRef(node.firstTriangle, node.triangleCount)
+  return node.isLeaf() ? shared::bvhLeafRef(node.firstTriangle, node.triangleCount)
                        : flattenInterior(tree, child, out);
 }
 
@@ -73,8 +68,8 @@ std::vector<shared::BvhNode> flattenBvhNodes(const BvhTree& tree) {
     shared::BvhNode only{};
     only.leftMin = only.rightMin = root.bounds.min;
     only.leftMax = only.rightMax = root.bounds.max;
-    only.leftRef = leafRef(root.firstTriangle, root.triangleCount);
-    only.rightRef = leafRef(root.firstTriangle, 0);
+    only.leftRef = shared::bvhLeafRef(root.firstTriangle, root.triangleCount);
+    only.rightRef = shared::bvhLeafRef(root.firstTriangle, 0);
     out.push_back(only);
     return out;
   }

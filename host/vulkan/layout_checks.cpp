@@ -21,11 +21,11 @@
 #include "shared/display.h"
 #include "shared/layouts.h"
 #include "tests/cell_lookup_interface.h"
-#include "vulkan/buffer_rows.h"
 #include "tests/pair_lookup_interface.h"
 #include "tests/texel_rows_interface.h"
 #include "tests/trace_rays_interface.h"
 #include "viewer/display_interface.h"
+#include "vulkan/buffer_rows.h"
 #include "wavefront/accumulate_interface.h"
 #include "wavefront/aov_interface.h"
 #include "wavefront/fused_interface.h"
@@ -95,13 +95,13 @@ constexpr bool bindingsDistinct() {
 }
 static_assert(bindingsDistinct(), "two buffer rows share a binding number");
 
-// The one texel row's elements are whole RGBA32UI texels (the GLSL accessor assembles a node from
-// four, shaders/gpu/buffers.glsl).
-static_assert(sizeof(shared::BvhNode) == 4 * 16, "a BVH node is four RGBA32UI texels");
-static_assert(sizeof(shared::TriangleShading) == 7 * 16, "a triangle's shading data is seven RGBA32UI texels");
-static_assert(sizeof(shared::MaterialGpu) == 5 * 16, "a material is five RGBA32UI texels");
-static_assert(sizeof(shared::EmitterGpu) == 16, "an emitter is one RGBA32UI texel");
-static_assert(sizeof(shared::LightBvhNodeGpu) == 4 * 16, "a light BVH node is four RGBA32UI texels");
+// The texel rows' elements are whole RGBA32UI texels, as many as the accessors of
+// shaders/gpu/texel_rows.glsl fetch.
+static_assert(sizeof(shared::BvhNode) == shared::kTexelsPerBvhNode * 16, "BvhNode: whole texels");
+static_assert(sizeof(shared::TriangleShading) == shared::kTexelsPerTriangleShading * 16, "TriangleShading: whole texels");
+static_assert(sizeof(shared::MaterialGpu) == shared::kTexelsPerMaterial * 16, "MaterialGpu: whole texels");
+static_assert(sizeof(shared::EmitterGpu) == shared::kTexelsPerEmitter * 16, "EmitterGpu: whole texels");
+static_assert(sizeof(shared::LightBvhNodeGpu) == shared::kTexelsPerLightBvhNode * 16, "LightBvhNodeGpu: whole texels");
 static_assert(isTexelBinding(shared::BINDING_BVH_NODES) && !isTexelBinding(shared::BINDING_TRIANGLES),
               "the BVH nodes are read as texels, the rest as storage buffers");
 

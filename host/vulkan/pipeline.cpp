@@ -4,9 +4,9 @@
 
 #include "util/error.h"
 #include "vulkan/buffer.h"
+#include "vulkan/buffer_rows.h"
 #include "vulkan/check.h"
 #include "vulkan/context.h"
-#include "vulkan/buffer_rows.h"
 #include "vulkan/embedded_shaders.h"
 
 namespace mixtrace {

@@ -1,7 +1,8 @@
 #pragma once
 // A descriptor set of buffers at given binding numbers (the rows a pass's interface header lists,
-// shaders/shared/buffer_table.h: storage buffers, and uniform texel buffers for TEXELS rows) with its pipeline layout, and compute pipelines
-// built from embedded SPIR-V with specialization constants. host/vulkan/compute_pass.h puts the
+// shaders/shared/buffer_table.h: storage buffers, and uniform texel buffers for TEXELS rows) with
+// its pipeline layout, and compute pipelines built from embedded SPIR-V with specialization
+// constants. host/vulkan/compute_pass.h puts the
 // two together for one pass.
 #include <cstdint>
 #include <map>

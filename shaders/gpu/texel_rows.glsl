@@ -17,9 +17,12 @@ BvhNode bvhNodeFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3) {
   node.pad1 = t3.w;
   return node;
 }
-#define BVH_NODE(i)                                                                  \
-  bvhNodeFromTexels(ROW_TEXEL(bvhNodes, 4u, i, 0u), ROW_TEXEL(bvhNodes, 4u, i, 1u), \
-                    ROW_TEXEL(bvhNodes, 4u, i, 2u), ROW_TEXEL(bvhNodes, 4u, i, 3u))
+#define BVH_NODE(i) \
+  bvhNodeFromTexels( \
+      ROW_TEXEL(bvhNodes, kTexelsPerBvhNode, i, 0u), \
+      ROW_TEXEL(bvhNodes, kTexelsPerBvhNode, i, 1u), \
+      ROW_TEXEL(bvhNodes, kTexelsPerBvhNode, i, 2u), \
+      ROW_TEXEL(bvhNodes, kTexelsPerBvhNode, i, 3u))
 
 TriangleShading triangleShadingFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3, uvec4 t4, uvec4 t5, uvec4 t6) {
   TriangleShading s;
@@ -41,11 +44,15 @@ TriangleShading triangleShadingFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3
   s.pad1 = t6.w;
   return s;
 }
-#define TRIANGLE_SHADING(i)                                                                             \
-  triangleShadingFromTexels(ROW_TEXEL(triangleShading, 7u, i, 0u), ROW_TEXEL(triangleShading, 7u, i, 1u), \
-                            ROW_TEXEL(triangleShading, 7u, i, 2u), ROW_TEXEL(triangleShading, 7u, i, 3u), \
-                            ROW_TEXEL(triangleShading, 7u, i, 4u), ROW_TEXEL(triangleShading, 7u, i, 5u), \
-                            ROW_TEXEL(triangleShading, 7u, i, 6u))
+#define TRIANGLE_SHADING(i) \
+  triangleShadingFromTexels( \
+      ROW_TEXEL(triangleShading, kTexelsPerTriangleShading, i, 0u), \
+      ROW_TEXEL(triangleShading, kTexelsPerTriangleShading, i, 1u), \
+      ROW_TEXEL(triangleShading, kTexelsPerTriangleShading, i, 2u), \
+      ROW_TEXEL(triangleShading, kTexelsPerTriangleShading, i, 3u), \
+      ROW_TEXEL(triangleShading, kTexelsPerTriangleShading, i, 4u), \
+      ROW_TEXEL(triangleShading, kTexelsPerTriangleShading, i, 5u), \
+      ROW_TEXEL(triangleShading, kTexelsPerTriangleShading, i, 6u))
 
 MaterialGpu materialFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3, uvec4 t4) {
   MaterialGpu m;
@@ -67,10 +74,13 @@ MaterialGpu materialFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3, uvec4 t4)
   m.padMaterial = t4.w;
   return m;
 }
-#define MATERIAL(i)                                                                                \
-  materialFromTexels(ROW_TEXEL(materials, 5u, i, 0u), ROW_TEXEL(materials, 5u, i, 1u),             \
-                     ROW_TEXEL(materials, 5u, i, 2u), ROW_TEXEL(materials, 5u, i, 3u),             \
-                     ROW_TEXEL(materials, 5u, i, 4u))
+#define MATERIAL(i) \
+  materialFromTexels( \
+      ROW_TEXEL(materials, kTexelsPerMaterial, i, 0u), \
+      ROW_TEXEL(materials, kTexelsPerMaterial, i, 1u), \
+      ROW_TEXEL(materials, kTexelsPerMaterial, i, 2u), \
+      ROW_TEXEL(materials, kTexelsPerMaterial, i, 3u), \
+      ROW_TEXEL(materials, kTexelsPerMaterial, i, 4u))
 
 EmitterGpu emitterFromTexel(uvec4 t) {
   EmitterGpu e;
@@ -80,7 +90,7 @@ EmitterGpu emitterFromTexel(uvec4 t) {
   e.cdf = uintBitsToFloat(t.w);
   return e;
 }
-#define EMITTER(i) emitterFromTexel(ROW_TEXEL(emitters, 1u, i, 0u))
+#define EMITTER(i) emitterFromTexel(ROW_TEXEL(emitters, kTexelsPerEmitter, i, 0u))
 
 LightBvhNodeGpu lightBvhNodeFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3) {
   LightBvhNodeGpu n;
@@ -97,6 +107,9 @@ LightBvhNodeGpu lightBvhNodeFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3) {
   return n;
 }
 // (LIGHT_BVH(i) is defined by the passes that walk the light BVH, as this.)
-#define LIGHT_BVH_FROM_TEXELS(i)                                                            \
-  lightBvhNodeFromTexels(ROW_TEXEL(lightBvh, 4u, i, 0u), ROW_TEXEL(lightBvh, 4u, i, 1u), \
-                         ROW_TEXEL(lightBvh, 4u, i, 2u), ROW_TEXEL(lightBvh, 4u, i, 3u))
+#define LIGHT_BVH_FROM_TEXELS(i) \
+  lightBvhNodeFromTexels( \
+      ROW_TEXEL(lightBvh, kTexelsPerLightBvhNode, i, 0u), \
+      ROW_TEXEL(lightBvh, kTexelsPerLightBvhNode, i, 1u), \
+      ROW_TEXEL(lightBvh, kTexelsPerLightBvhNode, i, 2u), \
+      ROW_TEXEL(lightBvh, kTexelsPerLightBvhNode, i, 3u))

@@ -128,9 +128,9 @@ SHARED_FN HitRecord bvhTraverse(vec3 origin, vec3 direction, float tMax, bool st
   uint stackSize = 0u;
   uint current = 0u;  // node 0, the root: its two boxes are the first test
   while (true) {
-    if ((current & kBvhLeafRef) != 0u) {
-      uint first = current & kBvhLeafFirstMask;
-      uint end = first + ((current & ~kBvhLeafRef) >> kBvhLeafCountShift);
+    if (bvhRefIsLeaf(current)) {
+      uint first = bvhLeafFirst(current);
+      uint end = first + bvhLeafCount(current);
       for (uint i = first; i < end; ++i) {
         float t = 0.0f;
         float u = 0.0f;

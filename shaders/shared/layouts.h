@@ -42,6 +42,14 @@ struct BvhNode {
 const uint kBvhLeafRef = 0x80000000u;
 const uint kBvhLeafCountShift = 28u;         // the count in bits 28-30: up to 7 (kBvhMaxLeafSize is 4)
 const uint kBvhLeafFirstMask = 0x0FFFFFFFu;  // the first triangle in bits 0-27: 268 M triangles
+const uint kTexelsPerBvhNode = 4u;           // 16-byte texels of a node (a TEXELS row, gpu/texel_rows.glsl)
+
+// A child reference's encoding, written by the flattener (host/bvh/bvh_gpu_layout.cpp) and read by
+// the traversal (shared/bvh_traverse.h).
+SHARED_FN uint bvhLeafRef(uint first, uint count) { return kBvhLeafRef | (count << kBvhLeafCountShift) | first; }
+SHARED_FN bool bvhRefIsLeaf(uint ref) { return (ref & kBvhLeafRef) != 0u; }
+SHARED_FN uint bvhLeafFirst(uint ref) { return ref & kBvhLeafFirstMask; }
+SHARED_FN uint bvhLeafCount(uint ref) { return (ref & ~kBvhLeafRef) >> kBvhLeafCountShift; }
 
 // Intersection data of one triangle, in BVH order: v0 and the two edges v1-v0, v2-v0.
 struct TriangleGeom {
@@ -69,6 +77,7 @@ struct TriangleShading {
   uint pad0;           // pads the struct to seven 16-byte texels (a TEXELS row); never read
   uint pad1;
 };
+const uint kTexelsPerTriangleShading = 7u;
 
 const uint kMaterialDoubleSided = 1u;
 const uint kMaterialAlphaMask = 2u;    // alphaMode MASK: cut where alpha < alphaCutoff (shared/alpha.h)
@@ -110,6 +119,7 @@ struct MaterialGpu {
   float ior;           // KHR_materials_ior (1.5 without it)
   uint padMaterial;
 };
+const uint kTexelsPerMaterial = 5u;
 
 // glTF sampler wrap modes.
 const uint kWrapRepeat = 0u;
@@ -198,6 +208,7 @@ struct LightBvhNodeGpu {
   uint second;
   uint third;
 };
+const uint kTexelsPerLightBvhNode = 4u;
 
 // An emissive triangle of an area light, chosen inside its light by area * radiance.
 struct EmitterGpu {
@@ -206,6 +217,7 @@ struct EmitterGpu {
   float pmf;           // probability inside its light by area x radiance (uniform selection: 1 / count)
   float cdf;           // inclusive prefix sum of pmf inside its light
 };
+const uint kTexelsPerEmitter = 1u;
 
 // The probability of emitter `em` inside its light of `emitterCount` emitters: uniform under
 // uniform selection (EMITTERS_UNIFORM), else its area x radiance pmf. One formula for the

@@ -173,9 +173,9 @@ bool contains(const Box& box, vec3 p) {
   return glm::all(glm::lessThanEqual(box.min, p)) && glm::all(glm::lessThanEqual(p, box.max));
 }
 
-bool isLeafRef(uint32_t ref) { return (ref & shared::kBvhLeafRef) != 0; }
-uint32_t leafFirst(uint32_t ref) { return ref & shared::kBvhLeafFirstMask; }
-uint32_t leafCount(uint32_t ref) { return (ref & ~shared::kBvhLeafRef) >> shared::kBvhLeafCountShift; }
+using shared::bvhLeafCount;
+using shared::bvhLeafFirst;
+using shared::bvhRefIsLeaf;
 
 void checkStructure(const Bvh& bvh, const std::vector<TriangleCorners>& input) {
   const size_t n = input.size();
@@ -218,8 +218,8 @@ void checkStructure(const Bvh& bvh, const std::vector<TriangleCorners>& input) {
     Item item = todo.back();
     todo.pop_back();
     deepest = std::max(deepest, item.depth);
-    if (isLeafRef(item.ref)) {
-      const uint32_t first = leafFirst(item.ref), count = leafCount(item.ref);
+    if (bvhRefIsLeaf(item.ref)) {
+      const uint32_t first = bvhLeafFirst(item.ref), count = bvhLeafCount(item.ref);
       ASSERT_LE(count, kBvhMaxLeafSize);
       ASSERT_LE(size_t(first) + count, n);
       for (uint32_t i = first; i < first + count; ++i) {
@@ -527,11 +527,11 @@ void expectFlatteningOf(const BvhTree& tree, const std::vector<shared::BvhNode>&
       ASSERT_TRUE(sameBytes(maxs[c], child.bounds.max)) << "node " << target << " child " << c;
       if (child.isLeaf()) {
         ++seen[children[c]];
-        ASSERT_TRUE(isLeafRef(refs[c]));
-        ASSERT_EQ(leafFirst(refs[c]), child.firstTriangle);
-        ASSERT_EQ(leafCount(refs[c]), child.triangleCount);
+        ASSERT_TRUE(bvhRefIsLeaf(refs[c]));
+        ASSERT_EQ(bvhLeafFirst(refs[c]), child.firstTriangle);
+        ASSERT_EQ(bvhLeafCount(refs[c]), child.triangleCount);
       } else {
-        ASSERT_FALSE(isLeafRef(refs[c]));
+        ASSERT_FALSE(bvhRefIsLeaf(refs[c]));
         todo.push_back({children[c], refs[c]});
       }
     }
