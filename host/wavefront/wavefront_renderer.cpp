@@ -117,6 +117,7 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   spec[SPEC_CMS_CONTROL_VARIATE] = useCms && s.cms.controlVariate;
   spec[SPEC_CMS_RELATIVE_WEIGHT] = useCms && s.relativeWeighting;
   spec[SPEC_CMS_PAIR_TECHNIQUES] = pairTechniques_;
+  spec[SPEC_LIGHT_SELECTION] = uint32_t(lightSelection_);
   if (useCms) {
     solver_ = std::make_unique<CellSolver>(ctx);
     solver_->bind(bindings_);
@@ -184,7 +185,7 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   if (fused_) {
     fused_->record(cmd, timer_,
                    shared::FusedConstants{paths, pixelOffset, sampleIndex, settings_.seed, settings_.maxDepth,
-                                          lightCount_, uint32_t(lightSelection_)});
+                                          lightCount_});
     accumulate_->record(cmd, timer_, shared::AccumulateConstants{paths, pixelOffset, sampleIndex});
     return;
   }
@@ -199,7 +200,6 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
   vertex.gridOrigin = gridOrigin_;
   vertex.gridInvCellSize = gridInvCellSize_;
   vertex.gatherStatistics = gathering ? 1u : 0u;
-  vertex.lightSelection = uint32_t(lightSelection_);
   vertex.pairCapacity = pairCapacity_;
   vertex.emitterCount = emitterCount_;
   for (uint32_t depth = 1; depth <= settings_.maxDepth; ++depth) {

@@ -27,6 +27,7 @@ layout(constant_id = SPEC_HAS_ALPHA) const bool HAS_ALPHA = true;
 layout(constant_id = SPEC_HAS_NORMAL_MAPS) const bool HAS_NORMAL_MAPS = true;
 layout(constant_id = SPEC_HAS_TRANSMISSION) const bool HAS_TRANSMISSION = true;
 layout(constant_id = SPEC_HAS_SECOND_UVS) const bool HAS_SECOND_UVS = true;
+layout(constant_id = SPEC_LIGHT_SELECTION) const uint LIGHT_SELECTION = kLightSelectPower;
 
 #ifdef PASS_CONSTANTS
 layout(push_constant, scalar) uniform Push { PASS_CONSTANTS pc; };

@@ -26,6 +26,10 @@
 #define SPEC_HAS_NORMAL_MAPS 12       // a material with a normalTexture (shared/surface.h)
 #define SPEC_HAS_TRANSMISSION 13      // a material with KHR_materials_transmission (shared/dielectric.h)
 #define SPEC_HAS_SECOND_UVS 14        // a material whose textures read two texture-coordinate mappings
-#define SPEC_COUNT 15
+// The method's light selection (kLightSelect*, shared/layouts.h). A constant, not a push constant:
+// on lavapipe a branch costs its code whether or not a lane takes it (gallivm runs both sides of
+// an `if` under a lane mask), so a selection the method never uses must not be in its pipelines.
+#define SPEC_LIGHT_SELECTION 15
+#define SPEC_COUNT 16
 
 #endif

@@ -157,7 +157,7 @@ struct LightGpu {
 };
 
 // How a method picks a light (host/scene/light_selection.h's LightSelection has these values; the
-// vertex passes read it as VertexConstants.lightSelection):
+// vertex passes are specialised by it, SPEC_LIGHT_SELECTION):
 //   uniform: every emissive triangle and every punctual light equally likely, the "uniform light
 //            selection" of the paper's baseline, of SeeSharp and of pbrt-v4's UniformLightSampler
 //            (each makes every emissive triangle a light): a light by its triangle count, then a

@@ -22,7 +22,6 @@ struct FusedConstants {
   uint seed;
   uint maxDepth;        // Mitsuba convention: 1 = emitters seen directly
   uint lightCount;
-  uint lightSelection;  // the method's kLightSelect* (shared/layouts.h)
 };
 SHARED_END
 #endif

@@ -19,8 +19,8 @@
 #include "gpu/buffers.glsl"
 // pt-bvh picks lights by the method's light BVH (shared/light_bvh.h, through shared/lights.h).
 #define LIGHT_BVH(i) LIGHT_BVH_FROM_TEXELS(i)
-#define LIGHT_SELECT_BVH (pc.lightSelection == kLightSelectBvh)
-#define EMITTERS_UNIFORM (pc.lightSelection == kLightSelectUniform)
+#define LIGHT_SELECT_BVH (LIGHT_SELECTION == kLightSelectBvh)
+#define EMITTERS_UNIFORM (LIGHT_SELECTION == kLightSelectUniform)
 #include "gpu/cms_statistics.glsl"
 #include "shared/bsdf.h"
 #include "shared/cms_sampling.h"

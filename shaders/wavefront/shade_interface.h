@@ -38,7 +38,6 @@ struct VertexConstants {
   vec3 gridOrigin;        // CMS: the cell grid's origin (scene bounds minimum)
   float gridInvCellSize;
   uint gatherStatistics;  // CMS: 1 when a later solve reads this sample pass's statistics
-  uint lightSelection;    // the method's kLightSelect* (shared/layouts.h): the table's or the light BVH's
   uint pairCapacity;      // per-triangle CV: slots of the (cell, technique) pair table (a power of two)
   uint emitterCount;      // per-triangle CV: technique sources of punctual lights start here
 };

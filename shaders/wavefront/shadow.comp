@@ -13,7 +13,7 @@
 #define PASS_CONSTANTS VertexConstants
 #include "gpu/cms_buffers.glsl"
 #include "gpu/buffers.glsl"
-#define EMITTERS_UNIFORM (pc.lightSelection == kLightSelectUniform)
+#define EMITTERS_UNIFORM (LIGHT_SELECTION == kLightSelectUniform)
 #include "gpu/cms_statistics.glsl"
 #include "shared/alpha.h"
 #define BVH_ALPHA_PASSES(i, u, v, origin, direction) alphaPassesThrough(i, u, v, origin, direction)
