@@ -8,8 +8,8 @@
 #define PASS_CONSTANTS FusedConstants
 #include "gpu/buffers.glsl"
 #define LIGHT_BVH(i) LIGHT_BVH_FROM_TEXELS(i)
-#define LIGHT_SELECT_BVH (pc.lightSelection == kLightSelectBvh)
-#define EMITTERS_UNIFORM (pc.lightSelection == kLightSelectUniform)
+#define LIGHT_SELECT_BVH (LIGHT_SELECTION == kLightSelectBvh)
+#define EMITTERS_UNIFORM (LIGHT_SELECTION == kLightSelectUniform)
 #include "shared/alpha.h"
 #define BVH_ALPHA_PASSES(i, u, v, origin, direction) alphaPassesThrough(i, u, v, origin, direction)
 #include "shared/bvh_traverse.h"
