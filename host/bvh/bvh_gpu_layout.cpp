@@ -39,7 +39,7 @@ uint32_t flattenInterior(const BvhTree& tree, uint32_t source, std::vector<share
 }
 
 shared::TriangleGeom makeGeom(const TriangleCorners& tri) {
-  shared::TriangleGeom g;
+  shared::TriangleGeom g{};
   g.v0 = tri.p[0];
   g.e1 = tri.p[1] - tri.p[0];
   g.e2 = tri.p[2] - tri.p[0];

@@ -98,12 +98,14 @@ static_assert(bindingsDistinct(), "two buffer rows share a binding number");
 // The texel rows' elements are whole RGBA32UI texels, as many as the accessors of
 // shaders/gpu/texel_rows.glsl fetch.
 static_assert(sizeof(shared::BvhNode) == shared::kTexelsPerBvhNode * 16, "BvhNode: whole texels");
+static_assert(sizeof(shared::TriangleGeom) == shared::kTexelsPerTriangleGeom * 16, "TriangleGeom: whole texels");
 static_assert(sizeof(shared::TriangleShading) == shared::kTexelsPerTriangleShading * 16, "TriangleShading: whole texels");
 static_assert(sizeof(shared::MaterialGpu) == shared::kTexelsPerMaterial * 16, "MaterialGpu: whole texels");
 static_assert(sizeof(shared::EmitterGpu) == shared::kTexelsPerEmitter * 16, "EmitterGpu: whole texels");
 static_assert(sizeof(shared::LightBvhNodeGpu) == shared::kTexelsPerLightBvhNode * 16, "LightBvhNodeGpu: whole texels");
-static_assert(isTexelBinding(shared::BINDING_BVH_NODES) && !isTexelBinding(shared::BINDING_TRIANGLES),
-              "the BVH nodes are read as texels, the rest as storage buffers");
+static_assert(isTexelBinding(shared::BINDING_BVH_NODES) && isTexelBinding(shared::BINDING_TRIANGLES) &&
+                  !isTexelBinding(shared::BINDING_RAY_ORIGIN),
+              "the BVH's rows are read as texels, the path state as storage buffers");
 
 }  // namespace
 }  // namespace mixtrace

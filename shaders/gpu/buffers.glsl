@@ -74,8 +74,7 @@ PASS_UNREAD_BUFFERS(DECLARE_BUFFER)
 #endif
 
 #include "gpu/texel_rows.glsl"
-#define BVH_TRIANGLE(i) triangles[i]
-#define TRIANGLE(i) triangles[i]
+#define BVH_TRIANGLE(i) TRIANGLE(i)
 #define TRIANGLE_UV2(i) triangleUv2[i]
 #define TEXTURE(i) textures[i]
 #define TEXEL(i) texels[i]

@@ -24,6 +24,22 @@ BvhNode bvhNodeFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3) {
       ROW_TEXEL(bvhNodes, kTexelsPerBvhNode, i, 2u), \
       ROW_TEXEL(bvhNodes, kTexelsPerBvhNode, i, 3u))
 
+TriangleGeom triangleGeomFromTexels(uvec4 t0, uvec4 t1, uvec4 t2) {
+  TriangleGeom g;
+  g.v0 = uintBitsToFloat(t0.xyz);
+  g.pad0 = t0.w;
+  g.e1 = uintBitsToFloat(t1.xyz);
+  g.pad1 = t1.w;
+  g.e2 = uintBitsToFloat(t2.xyz);
+  g.pad2 = t2.w;
+  return g;
+}
+#define TRIANGLE(i) \
+  triangleGeomFromTexels( \
+      ROW_TEXEL(triangles, kTexelsPerTriangleGeom, i, 0u), \
+      ROW_TEXEL(triangles, kTexelsPerTriangleGeom, i, 1u), \
+      ROW_TEXEL(triangles, kTexelsPerTriangleGeom, i, 2u))
+
 TriangleShading triangleShadingFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3, uvec4 t4, uvec4 t5, uvec4 t6) {
   TriangleShading s;
   s.n0 = uintBitsToFloat(t0.xyz);

@@ -51,12 +51,20 @@ SHARED_FN bool bvhRefIsLeaf(uint ref) { return (ref & kBvhLeafRef) != 0u; }
 SHARED_FN uint bvhLeafFirst(uint ref) { return ref & kBvhLeafFirstMask; }
 SHARED_FN uint bvhLeafCount(uint ref) { return (ref & ~kBvhLeafRef) >> kBvhLeafCountShift; }
 
-// Intersection data of one triangle, in BVH order: v0 and the two edges v1-v0, v2-v0.
+// Intersection data of one triangle, in BVH order: v0 and the two edges v1-v0, v2-v0, each padded
+// to a 16-byte texel, so a pass reads a triangle as three texel fetches (a TEXELS row): on
+// lavapipe, with the light selection specialised, that took intersect 8-10 % and shade (which
+// reads the hit and light triangles) 15-20 % below the storage-buffer loads, for a third more
+// memory (benchmarks/README.md, "BVH layout").
 struct TriangleGeom {
   vec3 v0;
+  uint pad0;
   vec3 e1;
+  uint pad1;
   vec3 e2;
+  uint pad2;
 };
+const uint kTexelsPerTriangleGeom = 3u;
 
 // Shading data of one triangle, in BVH order.
 struct TriangleShading {

@@ -9,7 +9,7 @@
 // The rows read per lane at divergent indices are TEXELS (shared/buffer_table.h): lavapipe gathers
 // texels, where it loads storage buffers one lane at a time.
 #define BUFFER_BVH_NODES(X) X(BVH_NODES, bvhNodes, 1, TEXELS, BvhNode, UPLOADED, "BVH nodes")
-#define BUFFER_TRIANGLES(X) X(TRIANGLES, triangles, 2, READ_ONLY, TriangleGeom, UPLOADED, "triangles")
+#define BUFFER_TRIANGLES(X) X(TRIANGLES, triangles, 2, TEXELS, TriangleGeom, UPLOADED, "triangles")
 #define BUFFER_TRIANGLE_SHADING(X) \
   X(TRIANGLE_SHADING, triangleShading, 3, TEXELS, TriangleShading, UPLOADED, "triangle shading data")
 #define BUFFER_MATERIALS(X) X(MATERIALS, materials, 4, TEXELS, MaterialGpu, UPLOADED, "materials")

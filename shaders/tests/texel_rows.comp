@@ -18,4 +18,5 @@ void main() {
   materialsOut[i] = MATERIAL(i);
   emittersOut[i] = EMITTER(i);
   lightBvhOut[i] = LIGHT_BVH_FROM_TEXELS(i);
+  trianglesOut[i] = TRIANGLE(i);
 }

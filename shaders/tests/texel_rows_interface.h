@@ -13,12 +13,13 @@
 #define BUFFER_MATERIALS_OUT(X) X(MATERIALS_OUT, materialsOut, 53, READ_WRITE, MaterialGpu, UPLOADED, "materials read back")
 #define BUFFER_EMITTERS_OUT(X) X(EMITTERS_OUT, emittersOut, 54, READ_WRITE, EmitterGpu, UPLOADED, "emitters read back")
 #define BUFFER_LIGHT_BVH_OUT(X) X(LIGHT_BVH_OUT, lightBvhOut, 55, READ_WRITE, LightBvhNodeGpu, UPLOADED, "light BVH read back")
+#define BUFFER_TRIANGLES_OUT(X) X(TRIANGLES_OUT, trianglesOut, 56, READ_WRITE, TriangleGeom, UPLOADED, "triangles read back")
 #define TEXEL_ROWS_OUT_BUFFERS(X)                                                                         \
   BUFFER_BVH_NODES_OUT(X) BUFFER_TRIANGLE_SHADING_OUT(X) BUFFER_MATERIALS_OUT(X) BUFFER_EMITTERS_OUT(X) \
-  BUFFER_LIGHT_BVH_OUT(X)
+  BUFFER_LIGHT_BVH_OUT(X) BUFFER_TRIANGLES_OUT(X)
 #define TEXEL_ROWS_BUFFERS(X)                                                                                \
   BUFFER_BVH_NODES(X) BUFFER_TRIANGLE_SHADING(X) BUFFER_MATERIALS(X) BUFFER_EMITTERS(X) BUFFER_LIGHT_BVH(X) \
-  TEXEL_ROWS_OUT_BUFFERS(X)
+  BUFFER_TRIANGLES(X) TEXEL_ROWS_OUT_BUFFERS(X)
 
 SHARED_BEGIN
 TEXEL_ROWS_OUT_BUFFERS(BUFFER_BINDING_CONSTANT)

@@ -48,6 +48,30 @@ struct Vertex {
   bool cv;       // CMS: the cell pays a control variate
 };
 
+// Appends a record to the shadow queue, member by member, the CMS members only for the methods
+// that read them: lavapipe stores each member in a loop over the lanes whether or not the shadow
+// pass reads it (the 14 stores were a fifth of pt-power's shade pass; the shadow pass reads
+// `flags` only under CMS_SELECTION too).
+void queueShadowRecord(ShadowRay s) {
+  uint slot = atomicAdd(queues.shadowCount, 1u);
+  shadowQueue[slot].origin = s.origin;
+  shadowQueue[slot].tMax = s.tMax;
+  shadowQueue[slot].direction = s.direction;
+  shadowQueue[slot].path = s.path;
+  shadowQueue[slot].contribution = s.contribution;
+  if (CMS_SELECTION) {
+    shadowQueue[slot].cell = s.cell;
+    shadowQueue[slot].integrand = s.integrand;
+    shadowQueue[slot].cluster = s.cluster;
+    shadowQueue[slot].throughput = s.throughput;
+    shadowQueue[slot].pk = s.pk;
+    shadowQueue[slot].pB = s.pB;
+    shadowQueue[slot].ck = s.ck;
+    shadowQueue[slot].flags = s.flags;
+    shadowQueue[slot].source = s.source;
+  }
+}
+
 // CMS: the previous vertex's BSDF sample, now that its hit is known (docs/estimator.md §3, §4): it
 // pays its control-variate term and adds its statistics. Returns the balance-heuristic weight of
 // the emission it reached against the cell's light selection.
@@ -79,7 +103,7 @@ float settlePreviousBsdfSample(uint path, HitRecord hit, SurfaceHit sh, vec3 le,
     s.ck = peff;
     s.flags = kShadowRayBsdfPair;
     s.source = techniqueSourceOfHit(hit.triangle, pc.emitterCount);
-    shadowQueue[atomicAdd(queues.shadowCount, 1u)] = s;
+    queueShadowRecord(s);
     atomicAdd(queues.untracedShadows, 1u);   // a record, not a ray (the stats count rays)
   } else if (CMS_PAIR_TECHNIQUES) {
     // No light technique: g = alpha_B p_B alone.
@@ -178,8 +202,7 @@ void queueLightSample(Vertex v, INOUT(uint) rng) {
     s.ck = ck;
     s.flags = (cmsTerms ? kShadowRayCms : 0u) | (reachable ? 0u : kShadowRayHidden);
     s.source = source;
-    uint slot = atomicAdd(queues.shadowCount, 1u);
-    shadowQueue[slot] = s;
+    queueShadowRecord(s);
     if (!reachable) atomicAdd(queues.untracedShadows, 1u);
   }
 }

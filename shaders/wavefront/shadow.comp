@@ -31,7 +31,9 @@ void main() {
     return;
   }
   // A hidden light point (per-triangle control variate) is settled here untraced.
-  bool visible = (s.flags & kShadowRayHidden) == 0u && !traceAny(s.origin, s.direction, s.tMax);
+  // (Records carry flags only under CMS_SELECTION: shade.comp queueShadowRecord.)
+  bool hidden = CMS_SELECTION && (s.flags & kShadowRayHidden) != 0u;
+  bool visible = !hidden && !traceAny(s.origin, s.direction, s.tMax);
   if (visible) addRadiance(s.path, s.contribution);
   if (CMS_SELECTION && (s.flags & kShadowRayCms) != 0u)
     settleLightSample(s.cell, s.cluster, s.pk, s.ck, visible ? s.pB : 0.0, visible ? s.integrand : vec3(0.0), s.throughput,
