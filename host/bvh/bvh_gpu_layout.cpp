@@ -39,17 +39,15 @@ uint32_t flattenInterior(const BvhTree& tree, uint32_t source, std::vector<share
 }
 
 shared::TriangleGeom makeGeom(const TriangleCorners& tri) {
-  shared::TriangleGeom g{};
-  g.v0 = tri.p[0];
-  g.e1 = tri.p[1] - tri.p[0];
-  g.e2 = tri.p[2] - tri.p[0];
-  if (glm::cross(g.e1, g.e2) == glm::vec3(0.0f)) {
+  glm::vec3 e1 = tri.p[1] - tri.p[0];
+  glm::vec3 e2 = tri.p[2] - tri.p[0];
+  if (glm::cross(e1, e2) == glm::vec3(0.0f)) {
     // No area, no normal: with zero edges the determinant is exactly 0 for every ray, so the
     // traversal never reports it (a hit would only yield a NaN shading normal).
-    g.e1 = glm::vec3(0.0f);
-    g.e2 = glm::vec3(0.0f);
+    e1 = glm::vec3(0.0f);
+    e2 = glm::vec3(0.0f);
   }
-  return g;
+  return shared::triangleGeom(tri.p[0], e1, e2);
 }
 
 }  // namespace

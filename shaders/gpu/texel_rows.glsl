@@ -27,11 +27,11 @@ BvhNode bvhNodeFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3) {
 TriangleGeom triangleGeomFromTexels(uvec4 t0, uvec4 t1, uvec4 t2) {
   TriangleGeom g;
   g.v0 = uintBitsToFloat(t0.xyz);
-  g.pad0 = t0.w;
+  g.toUnit = uintBitsToFloat(t0.w);
   g.e1 = uintBitsToFloat(t1.xyz);
-  g.pad1 = t1.w;
+  g.fromUnit = uintBitsToFloat(t1.w);
   g.e2 = uintBitsToFloat(t2.xyz);
-  g.pad2 = t2.w;
+  g.pad = t2.w;
   return g;
 }
 #define TRIANGLE(i) \

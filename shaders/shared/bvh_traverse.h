@@ -76,18 +76,12 @@ SHARED_FN float bvhBoxEntry(vec3 boundsMin, vec3 boundsMax, vec3 origin, vec3 in
 // barycentrics outside [0, 1] or a t beyond tMax. t is computed independently of tMax and then
 // compared with it, so for one ray every caller sees the same t for a triangle: traceAny(tMax)
 // is exactly "the closest hit has t < tMax". Edges use >= / <= on both sides, so a ray through
-// a shared edge is kept by at least one of its triangles up to rounding.
-//
-// The scaled t is cubic in the triangle's size (1e45 for a room scaled by 1e15: infinite in
-// float; 1e-36 at 1e-12: near underflow), so the edges and s are first multiplied by a power of
-// two near 1 / the largest edge component and t is scaled back at the end. A power of two is an
-// exact factor: every product rounds exactly as unscaled, only the exponents move.
+// a shared edge is kept by at least one of its triangles up to rounding. The scaled quantities
+// are rescaled by the triangle's toUnit / fromUnit (shared/layouts.h triangleGeom says why).
 SHARED_FN bool bvhIntersectTriangle(TriangleGeom tri, vec3 origin, vec3 direction, float tMax,
                                     OUT(float) t, OUT(float) u, OUT(float) v) {
-  vec3 extent = max(abs(tri.e1), abs(tri.e2));
-  int exponent = clamp((floatBitsToInt(max(max(extent.x, extent.y), extent.z)) >> 23) & 255, 1, 253);
-  float toUnit = intBitsToFloat((254 - exponent) << 23);   // 2^-(exponent - 127)
-  float fromUnit = intBitsToFloat(exponent << 23);         // 2^(exponent - 127)
+  float toUnit = tri.toUnit;
+  float fromUnit = tri.fromUnit;
   vec3 e1 = tri.e1 * toUnit;
   vec3 e2 = tri.e2 * toUnit;
   vec3 p = cross(direction, e2);

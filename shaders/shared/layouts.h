@@ -51,20 +51,39 @@ SHARED_FN bool bvhRefIsLeaf(uint ref) { return (ref & kBvhLeafRef) != 0u; }
 SHARED_FN uint bvhLeafFirst(uint ref) { return ref & kBvhLeafFirstMask; }
 SHARED_FN uint bvhLeafCount(uint ref) { return (ref & ~kBvhLeafRef) >> kBvhLeafCountShift; }
 
-// Intersection data of one triangle, in BVH order: v0 and the two edges v1-v0, v2-v0, each padded
-// to a 16-byte texel, so a pass reads a triangle as three texel fetches (a TEXELS row): on
+// Intersection data of one triangle, in BVH order: v0 and the two edges v1-v0, v2-v0, each with
+// a word beside it, so a pass reads a triangle as three 16-byte texel fetches (a TEXELS row): on
 // lavapipe, with the light selection specialised, that took intersect 8-10 % and shade (which
 // reads the hit and light triangles) 15-20 % below the storage-buffer loads, for a third more
 // memory (benchmarks/README.md, "BVH layout").
 struct TriangleGeom {
   vec3 v0;
-  uint pad0;
+  float toUnit;     // the intersection test's exact rescaling (triangleGeom below), 2^-e
   vec3 e1;
-  uint pad1;
+  float fromUnit;   // and back, 2^e
   vec3 e2;
-  uint pad2;
+  uint pad;
 };
 const uint kTexelsPerTriangleGeom = 3u;
+
+// A triangle's intersection data from v0 and its edges. The test (shared/bvh_traverse.h
+// bvhIntersectTriangle) forms t scaled by the cube of the triangle's size (1e45 for a room scaled
+// by 1e15: infinite in float; 1e-36 at 1e-12: near underflow), so it first multiplies the edges
+// and the origin's offset by toUnit, a power of two near 1 / the largest edge component, and t
+// back by fromUnit. A power of two is an exact factor: every product rounds exactly as unscaled,
+// only the exponents move. Computed here once per triangle rather than at every test.
+SHARED_FN TriangleGeom triangleGeom(vec3 v0, vec3 e1, vec3 e2) {
+  TriangleGeom g;
+  g.v0 = v0;
+  g.e1 = e1;
+  g.e2 = e2;
+  vec3 extent = max(abs(e1), abs(e2));
+  int exponent = clamp((floatBitsToInt(max(max(extent.x, extent.y), extent.z)) >> 23) & 255, 1, 253);
+  g.toUnit = intBitsToFloat((254 - exponent) << 23);   // 2^-(exponent - 127)
+  g.fromUnit = intBitsToFloat(exponent << 23);         // 2^(exponent - 127)
+  g.pad = 0u;
+  return g;
+}
 
 // Shading data of one triangle, in BVH order.
 struct TriangleShading {

@@ -476,6 +476,25 @@ TEST(Bvh, DepthStaysBoundedOnPathologicalInput) {
   EXPECT_EQ(m.any, 0);
 }
 
+// The intersection test's rescaling, computed once per triangle (shared/layouts.h triangleGeom):
+// powers of two, inverse to each other, bringing the largest edge component into [1, 2).
+TEST(Bvh, TriangleRescalingIsAnExactPowerOfTwoNearTheEdges) {
+  for (float scale : {1e-30f, 1e-12f, 1e-3f, 1.0f, 3.0f, 1e3f, 1e15f, 1e30f}) {
+    const shared::TriangleGeom g = shared::triangleGeom(vec3(5.0f), vec3(scale, 0.0f, 0.0f), vec3(0.0f, -0.5f * scale, 0.0f));
+    int e1 = 0, e2 = 0;
+    EXPECT_EQ(std::frexp(g.toUnit, &e1), 0.5f) << scale;
+    EXPECT_EQ(std::frexp(g.fromUnit, &e2), 0.5f) << scale;
+    EXPECT_EQ(g.toUnit * g.fromUnit, 1.0f) << scale;
+    const float unit = scale * g.toUnit;
+    EXPECT_GE(unit, 1.0f) << scale;
+    EXPECT_LT(unit, 2.0f) << scale;
+  }
+  // Zero edges (a degenerate triangle, as the builder stores it) still get a finite pair.
+  const shared::TriangleGeom z = shared::triangleGeom(vec3(1.0f), vec3(0.0f), vec3(0.0f));
+  EXPECT_TRUE(std::isfinite(z.toUnit) && std::isfinite(z.fromUnit));
+  EXPECT_EQ(z.toUnit * z.fromUnit, 1.0f);
+}
+
 TEST(Bvh, ZeroAreaTrianglesAreNeverHit) {
   std::vector<TriangleCorners> tris{
       makeTriangle(vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(2.0f, 0.0f, 0.0f)),  // collinear
