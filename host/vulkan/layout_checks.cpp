@@ -101,6 +101,7 @@ static_assert(sizeof(shared::BvhNode) == shared::kTexelsPerBvhNode * 16, "BvhNod
 static_assert(sizeof(shared::TriangleGeom) == shared::kTexelsPerTriangleGeom * 16, "TriangleGeom: whole texels");
 static_assert(sizeof(shared::TriangleShading) == shared::kTexelsPerTriangleShading * 16, "TriangleShading: whole texels");
 static_assert(sizeof(shared::MaterialGpu) == shared::kTexelsPerMaterial * 16, "MaterialGpu: whole texels");
+static_assert(sizeof(shared::LightGpu) == shared::kTexelsPerLight * 16, "LightGpu: whole texels");
 static_assert(sizeof(shared::EmitterGpu) == shared::kTexelsPerEmitter * 16, "EmitterGpu: whole texels");
 static_assert(sizeof(shared::LightBvhNodeGpu) == shared::kTexelsPerLightBvhNode * 16, "LightBvhNodeGpu: whole texels");
 static_assert(isTexelBinding(shared::BINDING_BVH_NODES) && isTexelBinding(shared::BINDING_TRIANGLES) &&

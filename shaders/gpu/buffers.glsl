@@ -78,7 +78,6 @@ PASS_UNREAD_BUFFERS(DECLARE_BUFFER)
 #define TRIANGLE_UV2(i) triangleUv2[i]
 #define TEXTURE(i) textures[i]
 #define TEXEL(i) texels[i]
-#define LIGHT(i) lights[i]
 #define ENV_DATA(i) environment[i]
 // How the method picks the scene's lights (shared/method_buffers.h); a light's cluster and its pmf
 // inside the cluster (docs/estimator.md §2) are read only through these.

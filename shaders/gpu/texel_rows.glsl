@@ -98,6 +98,27 @@ MaterialGpu materialFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3, uvec4 t4)
       ROW_TEXEL(materials, kTexelsPerMaterial, i, 3u), \
       ROW_TEXEL(materials, kTexelsPerMaterial, i, 4u))
 
+LightGpu lightFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3) {
+  LightGpu l;
+  l.kind = t0.x;
+  l.firstEmitter = t0.y;
+  l.emitterCount = t0.z;
+  l.spotScale = uintBitsToFloat(t0.w);
+  l.position = uintBitsToFloat(t1.xyz);
+  l.spotOffset = uintBitsToFloat(t1.w);
+  l.direction = uintBitsToFloat(t2.xyz);
+  l.intensity = uintBitsToFloat(uvec3(t2.w, t3.xy));
+  l.pad0 = t3.z;
+  l.pad1 = t3.w;
+  return l;
+}
+#define LIGHT(i) \
+  lightFromTexels( \
+      ROW_TEXEL(lights, kTexelsPerLight, i, 0u), \
+      ROW_TEXEL(lights, kTexelsPerLight, i, 1u), \
+      ROW_TEXEL(lights, kTexelsPerLight, i, 2u), \
+      ROW_TEXEL(lights, kTexelsPerLight, i, 3u))
+
 EmitterGpu emitterFromTexel(uvec4 t) {
   EmitterGpu e;
   e.triangle = t.x;

@@ -181,7 +181,10 @@ struct LightGpu {
   float spotOffset;
   vec3 direction;      // spot and directional: the direction the light travels
   vec3 intensity;      // colour * intensity (W/sr, or W/m^2 for directional)
+  uint pad0;           // to whole texels (a TEXELS row: the shade pass reads a light per lane)
+  uint pad1;
 };
+const uint kTexelsPerLight = 4u;
 
 // How a method picks a light (host/scene/light_selection.h's LightSelection has these values; the
 // vertex passes are specialised by it, SPEC_LIGHT_SELECTION):

@@ -15,7 +15,7 @@
 #define BUFFER_MATERIALS(X) X(MATERIALS, materials, 4, TEXELS, MaterialGpu, UPLOADED, "materials")
 #define BUFFER_TEXTURES(X) X(TEXTURES, textures, 5, READ_ONLY, TextureGpu, UPLOADED, "texture table")
 #define BUFFER_TEXELS(X) X(TEXELS, texels, 6, READ_ONLY, uint, UPLOADED, "texels")
-#define BUFFER_LIGHTS(X) X(LIGHTS, lights, 7, READ_ONLY, LightGpu, UPLOADED, "lights")
+#define BUFFER_LIGHTS(X) X(LIGHTS, lights, 7, TEXELS, LightGpu, UPLOADED, "lights")
 #define BUFFER_EMITTERS(X) X(EMITTERS, emitters, 8, TEXELS, EmitterGpu, UPLOADED, "emitters")
 // The environment light's map and distribution (shared/environment_layout.h); a header saying
 // "none" where the scene has none.

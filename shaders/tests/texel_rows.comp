@@ -19,4 +19,5 @@ void main() {
   emittersOut[i] = EMITTER(i);
   lightBvhOut[i] = LIGHT_BVH_FROM_TEXELS(i);
   trianglesOut[i] = TRIANGLE(i);
+  lightsOut[i] = LIGHT(i);
 }

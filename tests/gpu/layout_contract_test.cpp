@@ -129,8 +129,8 @@ TEST(LayoutContract, GlslOffsetsAndStridesEqualCpp) {
   if (BUFFER_IS_TEXELS_##access) texelTypes.insert(#Type);
   EVERY_BUFFER_ROW(TEXEL_ROW_TYPE)
 #undef TEXEL_ROW_TYPE
-  EXPECT_EQ(texelTypes, (std::set<std::string>{"BvhNode", "TriangleGeom", "TriangleShading", "MaterialGpu", "EmitterGpu",
-                                               "LightBvhNodeGpu"}));
+  EXPECT_EQ(texelTypes, (std::set<std::string>{"BvhNode", "TriangleGeom", "TriangleShading", "MaterialGpu", "LightGpu",
+                                               "EmitterGpu", "LightBvhNodeGpu"}));
   for (const auto& [name, layout] : cpp) {
     if (!texelTypes.count(name)) EXPECT_TRUE(seen.count(name)) << name << " was found in no embedded shader";
   }

@@ -1,5 +1,5 @@
 // The rows the passes read as texels (access TEXELS: BVH nodes, triangles, triangle shading data,
-// materials, emitters, light BVH nodes) come back from their GLSL accessors bit for bit as the host wrote
+// materials, lights, emitters, light BVH nodes) come back from their GLSL accessors bit for bit as the host wrote
 // them: random words in every member, including the bit patterns of NaNs, infinities and -1,
 // which a float view could alter (shaders/tests/texel_rows.comp).
 #include <cstring>
@@ -46,19 +46,23 @@ TEST(TexelRows, EveryAccessorReadsBackTheHostsBits) {
   auto emitters = randomElements<shared::EmitterGpu>(n, rng);
   auto lightNodes = randomElements<shared::LightBvhNodeGpu>(n, rng);
   auto triangles = randomElements<shared::TriangleGeom>(n, rng);
+  auto lights = randomElements<shared::LightGpu>(n, rng);
   Buffer in[] = {makeBuffer(ctx, nodes, "nodes"), makeBuffer(ctx, shading, "shading"),
                  makeBuffer(ctx, materials, "materials"), makeBuffer(ctx, emitters, "emitters"),
-                 makeBuffer(ctx, lightNodes, "light nodes"), makeBuffer(ctx, triangles, "triangles")};
+                 makeBuffer(ctx, lightNodes, "light nodes"), makeBuffer(ctx, triangles, "triangles"),
+                 makeBuffer(ctx, lights, "lights")};
   Buffer out[] = {Buffer(ctx, n * sizeof(shared::BvhNode), "out"), Buffer(ctx, n * sizeof(shared::TriangleShading), "out"),
                   Buffer(ctx, n * sizeof(shared::MaterialGpu), "out"), Buffer(ctx, n * sizeof(shared::EmitterGpu), "out"),
-                  Buffer(ctx, n * sizeof(shared::LightBvhNodeGpu), "out"), Buffer(ctx, n * sizeof(shared::TriangleGeom), "out")};
+                  Buffer(ctx, n * sizeof(shared::LightBvhNodeGpu), "out"), Buffer(ctx, n * sizeof(shared::TriangleGeom), "out"),
+                  Buffer(ctx, n * sizeof(shared::LightGpu), "out")};
   const uint32_t inBindings[] = {shared::BINDING_BVH_NODES, shared::BINDING_TRIANGLE_SHADING, shared::BINDING_MATERIALS,
-                                 shared::BINDING_EMITTERS, shared::BINDING_LIGHT_BVH, shared::BINDING_TRIANGLES};
+                                 shared::BINDING_EMITTERS, shared::BINDING_LIGHT_BVH, shared::BINDING_TRIANGLES,
+                                 shared::BINDING_LIGHTS};
   const uint32_t outBindings[] = {shared::BINDING_BVH_NODES_OUT, shared::BINDING_TRIANGLE_SHADING_OUT,
                                   shared::BINDING_MATERIALS_OUT, shared::BINDING_EMITTERS_OUT,
-                                  shared::BINDING_LIGHT_BVH_OUT, shared::BINDING_TRIANGLES_OUT};
+                                  shared::BINDING_LIGHT_BVH_OUT, shared::BINDING_TRIANGLES_OUT, shared::BINDING_LIGHTS_OUT};
   ComputePass pass(ctx, "texel_rows", BINDINGS_OF(TEXEL_ROWS_BUFFERS), sizeof(shared::TexelRowsConstants), {});
-  for (int r = 0; r < 6; ++r) {
+  for (int r = 0; r < 7; ++r) {
     EXPECT_TRUE(isTexelBinding(inBindings[r])) << "row " << r << " is read as texels";
     pass.bind(inBindings[r], in[r]);
     pass.bind(outBindings[r], out[r]);
@@ -71,6 +75,7 @@ TEST(TexelRows, EveryAccessorReadsBackTheHostsBits) {
   expectSameBits(out[3], emitters, "emitters");
   expectSameBits(out[4], lightNodes, "light BVH nodes");
   expectSameBits(out[5], triangles, "triangles");
+  expectSameBits(out[6], lights, "lights");
   EXPECT_EQ(ctx.validationErrors(), 0u);
 }
 
