@@ -30,7 +30,7 @@ Buffer::Buffer(VulkanContext& ctx, VkDeviceSize size, const std::string& name, b
                 mib(ctx.maxStorageBufferRange()) + ": use a smaller image or scene");
   VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bci.size = size_;
-  bci.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+  bci.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT |
               VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
               VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
   vkCheck(vkCreateBuffer(ctx.device(), &bci, nullptr, &buffer_), "vkCreateBuffer");
@@ -122,8 +122,8 @@ VkBufferView makeTexelView(VulkanContext& ctx, const Buffer& buffer) {
   constexpr VkDeviceSize kTexelBytes = 16;
   VkFormatProperties fp;
   vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), kFormat, &fp);
-  if (!(fp.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT))
-    throw Error("the Vulkan device cannot read RGBA32UI texel buffers, which " + buffer.name() + " needs");
+  if (!(fp.bufferFeatures & VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT))
+    throw Error("the Vulkan device cannot read RGBA32UI storage texel buffers, which " + buffer.name() + " needs");
   const VkDeviceSize texels = buffer.size() / kTexelBytes;
   if (texels > ctx.properties().limits.maxTexelBufferElements)
     throw Error(buffer.name() + " needs " + std::to_string(texels) + " texels but the device views at most " +

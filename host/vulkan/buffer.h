@@ -1,5 +1,5 @@
 #pragma once
-// A buffer and its memory, usable as a storage buffer or (through makeTexelView) a uniform texel
+// A buffer and its memory, usable as a storage buffer or (through makeTexelView) a storage texel
 // buffer. Prefers memory that is both device-local and host-visible (all of lavapipe's memory,
 // resizable-BAR GPUs) so uploads are a memcpy; otherwise device-local memory filled through a
 // staging buffer.
@@ -49,7 +49,7 @@ class Buffer {
 };
 
 // A view of the whole of `buffer` as RGBA32UI texels (the words' bits, whatever they hold), for a
-// uniform texel buffer descriptor (a TEXELS row, shaders/shared/buffer_table.h); the caller
+// storage texel buffer descriptor (a TEXELS row, shaders/shared/buffer_table.h); the caller
 // destroys it. Throws mixtrace::Error when
 // the device cannot view that many texels at once or cannot read RGBA32UI texel buffers.
 VkBufferView makeTexelView(VulkanContext& ctx, const Buffer& buffer);

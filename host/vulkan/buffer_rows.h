@@ -1,7 +1,7 @@
 #pragma once
 // Every row of every buffer table (shaders/shared/buffer_table.h) in one list, for what must see
 // them all: that no two rows share a binding number (layout_checks.cpp) and the descriptor type
-// of each binding (pipeline.cpp: a TEXELS row is a uniform texel buffer, the rest are storage
+// of each binding (pipeline.cpp: a TEXELS row is a storage texel buffer, the rest are storage
 // buffers).
 #include <cstdint>
 
@@ -21,7 +21,7 @@
 
 namespace mixtrace {
 
-// Whether `binding` is a TEXELS row's: bound as a uniform texel buffer of RGBA32UI texels.
+// Whether `binding` is a TEXELS row's: bound as a storage texel buffer of RGBA32UI texels.
 constexpr bool isTexelBinding(uint32_t binding) {
 #define ROW_IS_TEXELS(ID, name, number, access, Type, extent, label) \
   if (binding == uint32_t(number)) return BUFFER_IS_TEXELS_##access;

@@ -13,7 +13,7 @@ namespace mixtrace {
 namespace {
 
 VkDescriptorType descriptorTypeOf(uint32_t binding) {
-  return isTexelBinding(binding) ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  return isTexelBinding(binding) ? VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
 }  // namespace
@@ -35,7 +35,7 @@ DescriptorSet::DescriptorSet(VulkanContext& ctx, const std::vector<uint32_t>& bi
 
   std::vector<VkDescriptorPoolSize> sizes;
   if (bindingCount > texelBindings) sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bindingCount - texelBindings});
-  if (texelBindings > 0) sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, texelBindings});
+  if (texelBindings > 0) sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, texelBindings});
   if (sizes.empty()) sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1});  // a pool needs one size
   VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pci.maxSets = 1;

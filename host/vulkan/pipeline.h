@@ -1,6 +1,6 @@
 #pragma once
 // A descriptor set of buffers at given binding numbers (the rows a pass's interface header lists,
-// shaders/shared/buffer_table.h: storage buffers, and uniform texel buffers for TEXELS rows) with
+// shaders/shared/buffer_table.h: storage buffers, and storage texel buffers for TEXELS rows) with
 // its pipeline layout, and compute pipelines built from embedded SPIR-V with specialization
 // constants. host/vulkan/compute_pass.h puts the
 // two together for one pass.
@@ -21,7 +21,7 @@ using BufferBindings = std::map<uint32_t, const Buffer*>;
 
 class DescriptorSet {
  public:
-  // One buffer at each of `bindings` (any numbers, each once; a TEXELS row's as a uniform texel
+  // One buffer at each of `bindings` (any numbers, each once; a TEXELS row's as a storage texel
   // buffer, the others as storage buffers), and a pipeline layout with this set and a
   // push-constant range of pushConstantBytes (0: none).
   DescriptorSet(VulkanContext& ctx, const std::vector<uint32_t>& bindings, uint32_t pushConstantBytes);

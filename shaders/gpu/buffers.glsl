@@ -64,7 +64,7 @@ layout(push_constant, scalar) uniform Push { PASS_CONSTANTS pc; };
 #define DECLARE_BUFFER_READ_WRITE(name, bindingNumber, Type, extent) DECLARE_STORAGE_BUFFER(name, bindingNumber, READ_WRITE, Type, extent)
 #define DECLARE_BUFFER_READ_BACK(name, bindingNumber, Type, extent) DECLARE_STORAGE_BUFFER(name, bindingNumber, READ_BACK, Type, extent)
 // A TEXELS row: RGBA32UI texels (its words' bits); the accessors below assemble its Type from them.
-#define DECLARE_BUFFER_TEXELS(name, bindingNumber, Type, extent) layout(binding = bindingNumber) uniform usamplerBuffer name;
+#define DECLARE_BUFFER_TEXELS(name, bindingNumber, Type, extent) layout(rgba32ui, binding = bindingNumber) readonly uniform uimageBuffer name;
 #define DECLARE_BUFFER(ID, name, bindingNumber, access, Type, extent, label) \
   DECLARE_BUFFER_##access(name, bindingNumber, Type, extent)
 

@@ -2,8 +2,8 @@
 // gpu/buffers.glsl after the declarations: each struct assembled from its RGBA32UI texels, word k
 // of the struct in component k % 4 of texel k / 4 (tests/gpu/texel_rows_test.cpp checks every
 // accessor bit for bit). The accessors are macros, so a pass names only the rows it lists (the
-// sampler of a row it does not list is undeclared); the assembling functions name no row.
-#define ROW_TEXEL(row, texelsPerElement, i, k) texelFetch(row, int((texelsPerElement) * (i) + (k)))
+// image of a row it does not list is undeclared); the assembling functions name no row.
+#define ROW_TEXEL(row, texelsPerElement, i, k) imageLoad(row, int((texelsPerElement) * (i) + (k)))
 
 BvhNode bvhNodeFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3) {
   BvhNode node;

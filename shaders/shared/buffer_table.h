@@ -18,11 +18,12 @@
 //
 // access: READ_ONLY (declared readonly), READ_WRITE, READ_BACK (read-write, and read by the host
 // after a submission: allocated where the host reads it cheaply), TEXELS (read-only, bound as a
-// uniform texel buffer of RGBA32UI texels, which keep every bit pattern, and read with texelFetch
+// storage texel buffer of RGBA32UI texels, which keep every bit pattern, and read with imageLoad
 // through the accessors of gpu/texel_rows.glsl: Type must be a whole number of 16-byte texels;
-// lavapipe fetches texels with vector gathers where it loads a storage buffer one lane at a time,
-// which made its intersect and shadow passes 17-35 % and its shade pass 21-31 % faster;
-// benchmarks/README.md, "BVH layout").
+// lavapipe gathers texels with vector instructions where it loads a storage buffer one lane at a
+// time, which made its intersect and shadow passes 17-35 % and its shade pass 21-31 % faster, and
+// it loads a storage image's texels inline where it calls a function for each texelFetch of a
+// uniform texel buffer, 5-14 % more; benchmarks/README.md, "BVH layout").
 // extent (elements): ONE (a single struct), PER_PATH, TWO_PER_PATH (ping-pong halves), PER_PIXEL,
 // TWO_PER_PIXEL, CELL_SLOTS / CELL_STATS / CELL_SOLUTIONS (the CMS cell table, x the per-cell
 // strides of shared/cms_layouts.h), CMS_PATHS / CMS_PIXELS (per path / pixel when the method
@@ -32,7 +33,7 @@
 #define MIXTRACE_SHARED_BUFFER_TABLE_H
 #include "shared/dialect.h"
 
-// Whether a row of this access is a uniform texel buffer (TEXELS) rather than a storage buffer.
+// Whether a row of this access is a storage texel buffer (TEXELS) rather than a storage buffer.
 #define BUFFER_IS_TEXELS_READ_ONLY false
 #define BUFFER_IS_TEXELS_READ_WRITE false
 #define BUFFER_IS_TEXELS_READ_BACK false
