@@ -9,14 +9,21 @@
 #include "shared/sampling.h"
 SHARED_BEGIN_WITH_BUFFERS
 
+// The texel coordinate i wrapped into [0, n) by the glTF wrap mode. Repeat and mirror take the
+// remainder from a float quotient rather than integer `%`: SIMD units have no integer division,
+// so lavapipe divides lane by lane (and runs every mode's branch), which made the remainders a
+// large part of a textured scene's shade pass. For |i| < 2^24 the correctly rounded quotient never
+// crosses an integer (its distance to one is at least 1 / period, half an ulp at most), so the
+// remainder is exact; GLSL allows a division 2.5 ulp off (a GPU's reciprocal), which can cross one,
+// and the two corrections absorb that. Beyond 2^24 (millions of repeats) the clamp keeps it a texel.
 SHARED_FN int wrapTexelCoord(int i, int n, uint mode) {
   if (mode == kWrapClamp) return clamp(i, 0, n - 1);
-  if (mode == kWrapMirror) {
-    int period = 2 * n;
-    int m = ((i % period) + period) % period;
-    return m < n ? m : period - 1 - m;
-  }
-  return ((i % n) + n) % n;
+  int period = mode == kWrapMirror ? 2 * n : n;
+  int m = i - int(floor(float(i) / float(period))) * period;
+  if (m < 0) m += period;
+  if (m >= period) m -= period;
+  if (mode == kWrapMirror && m >= n) m = period - 1 - m;
+  return clamp(m, 0, n - 1);
 }
 
 SHARED_FN vec4 fetchTexel(TextureGpu t, int x, int y, bool srgb) {

@@ -1,0 +1,69 @@
+// Texture wrap modes (shaders/shared/texture.h wrapTexelCoord, compiled as C++): the remainder it
+// takes from a float quotient equals the integer one for every coordinate below 2^24 in
+// magnitude, for repeat and mirror, and stays a valid texel beyond that.
+#include <cstdint>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "shared/layouts.h"
+
+// texture.h reads textures through these; this test calls only the wrap function.
+namespace texture_test_buffers {
+const mixtrace::shared::TextureGpu* textures = nullptr;
+const uint32_t* texels = nullptr;
+}  // namespace texture_test_buffers
+#define TEXTURE(i) (::texture_test_buffers::textures[i])
+#define TEXEL(i) (::texture_test_buffers::texels[i])
+#include "shared/texture.h"
+
+namespace {
+
+using namespace mixtrace::shared;
+
+int repeatReference(int64_t i, int64_t n) { return int(((i % n) + n) % n); }
+
+int mirrorReference(int64_t i, int64_t n) {
+  const int64_t period = 2 * n;
+  const int64_t m = ((i % period) + period) % period;
+  return int(m < n ? m : period - 1 - m);
+}
+
+std::vector<int64_t> coordinatesAround(int64_t n) {
+  std::vector<int64_t> out;
+  for (int64_t i = -3 * n - 5; i <= 3 * n + 5; ++i) out.push_back(i);
+  // Near multiples of the periods far out, where a float quotient rounds to the next integer.
+  const int64_t limit = (int64_t(1) << 24) - 1;
+  for (int64_t k : {int64_t(1000), int64_t(4096), limit / (2 * n), limit / n})
+    for (int64_t d = -2; d <= 2; ++d)
+      for (int64_t base : {k * n, k * 2 * n})
+        if (base + d <= limit) {
+          out.push_back(base + d);
+          out.push_back(-(base + d));
+        }
+  out.push_back(limit);
+  out.push_back(-limit);
+  return out;
+}
+
+TEST(TextureWrap, RepeatAndMirrorAreTheIntegerRemainderBelowTwoToThe24) {
+  for (int n : {1, 2, 3, 5, 7, 64, 1000, 4095, 4096, 12345, 16384}) {
+    for (int64_t i : coordinatesAround(n)) {
+      ASSERT_EQ(wrapTexelCoord(int(i), n, kWrapRepeat), repeatReference(i, n)) << "repeat, i " << i << ", n " << n;
+      ASSERT_EQ(wrapTexelCoord(int(i), n, kWrapMirror), mirrorReference(i, n)) << "mirror, i " << i << ", n " << n;
+      ASSERT_EQ(wrapTexelCoord(int(i), n, kWrapClamp), int(i < 0 ? 0 : i >= n ? n - 1 : i)) << "clamp, i " << i;
+    }
+  }
+}
+
+TEST(TextureWrap, HugeCoordinatesStillNameATexel) {
+  for (int n : {1, 3, 1000, 16384})
+    for (int i : {int(1 << 24) + 1, 123456789, 2147483647, -2147483647, -(1 << 30)})
+      for (uint32_t mode : {kWrapRepeat, kWrapMirror, kWrapClamp}) {
+        const int m = wrapTexelCoord(i, n, mode);
+        EXPECT_GE(m, 0) << i << " " << n << " " << mode;
+        EXPECT_LT(m, n) << i << " " << n << " " << mode;
+      }
+}
+
+}  // namespace
