@@ -1,6 +1,7 @@
 #include "vulkan/pipeline.h"
 
 #include <algorithm>
+#include <string>
 
 #include "util/error.h"
 #include "vulkan/buffer.h"
@@ -18,6 +19,15 @@ VkDescriptorType descriptorTypeOf(uint32_t binding) {
 
 }  // namespace
 
+void checkDescriptorLimits(uint32_t storageBuffers, uint32_t texelBuffers, const VkPhysicalDeviceLimits& limits) {
+  if (storageBuffers > limits.maxPerStageDescriptorStorageBuffers)
+    throw Error("a GPU pass binds " + std::to_string(storageBuffers) + " storage buffers but the Vulkan device allows " +
+                std::to_string(limits.maxPerStageDescriptorStorageBuffers) + " per shader stage");
+  if (texelBuffers > limits.maxPerStageDescriptorStorageImages)
+    throw Error("a GPU pass binds " + std::to_string(texelBuffers) + " storage texel buffers but the Vulkan device allows " +
+                std::to_string(limits.maxPerStageDescriptorStorageImages) + " storage images per shader stage");
+}
+
 DescriptorSet::DescriptorSet(VulkanContext& ctx, const std::vector<uint32_t>& bindingNumbers,
                              uint32_t pushConstantBytes)
     : ctx_(ctx), bindings_(bindingNumbers), pushConstantBytes_(pushConstantBytes) {
@@ -28,6 +38,7 @@ DescriptorSet::DescriptorSet(VulkanContext& ctx, const std::vector<uint32_t>& bi
     bindings[i] = {bindings_[i], descriptorTypeOf(bindings_[i]), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
     texelBindings += isTexelBinding(bindings_[i]) ? 1 : 0;
   }
+  checkDescriptorLimits(bindingCount - texelBindings, texelBindings, ctx.properties().limits);
   VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   lci.bindingCount = bindingCount;
   lci.pBindings = bindings.data();

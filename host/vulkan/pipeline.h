@@ -19,6 +19,11 @@ class Buffer;
 // Buffers by binding number: what a renderer (or a test) offers the passes to bind from.
 using BufferBindings = std::map<uint32_t, const Buffer*>;
 
+// Throws mixtrace::Error, naming the limit, when one shader stage would bind more storage buffers
+// or storage texel buffers (which count as storage images) than the device allows; Vulkan
+// guarantees only 4 storage images per stage, and a pass may bind up to 7 texel rows.
+void checkDescriptorLimits(uint32_t storageBuffers, uint32_t texelBuffers, const VkPhysicalDeviceLimits& limits);
+
 class DescriptorSet {
  public:
   // One buffer at each of `bindings` (any numbers, each once; a TEXELS row's as a storage texel
