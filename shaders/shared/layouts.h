@@ -55,7 +55,7 @@ SHARED_FN uint bvhLeafCount(uint ref) { return (ref & ~kBvhLeafRef) >> kBvhLeafC
 // a word beside it, so a pass reads a triangle as three 16-byte texel fetches (a TEXELS row): on
 // lavapipe, with the light selection specialised, that took intersect 8-10 % and shade (which
 // reads the hit and light triangles) 15-20 % below the storage-buffer loads, for a third more
-// memory (benchmarks/README.md, "BVH layout").
+// memory (benchmarks/README.md, "What a pass costs on lavapipe").
 struct TriangleGeom {
   vec3 v0;
   float toUnit;     // the intersection test's exact rescaling (triangleGeom below), 2^-e
