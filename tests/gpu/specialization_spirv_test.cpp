@@ -70,10 +70,10 @@ TEST_P(SpecializationSpirv, AFeatureSwitchedOffLeavesNoneOfItsCode) {
 
 INSTANTIATE_TEST_SUITE_P(Features, SpecializationSpirv,
                          // Measured (instructions on / off, the light selection at its default, power):
-                         // alpha 1277 / 581 in intersect, 1280 / 579 in shadow; vertex colours 8683 /
-                         // 8639, environment 8683 / 7877, textures 8683 / 5305, normal maps 8683 / 8047,
-                         // transmission 8683 / 6382, second texture coordinates 8683 / 8558 in shade
-                         // (1277 / 1226 in intersect).
+                         // alpha 1408 / 548 in intersect, 1402 / 537 in shadow; vertex colours 9657 /
+                         // 9614, environment 9657 / 8848, textures 9657 / 5275, normal maps 9657 / 8855,
+                         // transmission 9657 / 7189, second texture coordinates 9657 / 9533 in shade
+                         // (1408 / 1357 in intersect).
                          ::testing::Values(FeatureCase{"alpha", SPEC_HAS_ALPHA, "intersect", 400},
                                            FeatureCase{"alpha", SPEC_HAS_ALPHA, "shadow", 400},
                                            FeatureCase{"vertex_colours", SPEC_HAS_VERTEX_COLORS, "shade", 30},
@@ -91,7 +91,7 @@ INSTANTIATE_TEST_SUITE_P(Features, SpecializationSpirv,
 // by power has none of the light BVH's code in its vertex passes, and one that picks by the light
 // BVH none of the uniform selection's (lavapipe runs both sides of a branch, so a push constant
 // here cost the shade pass a quarter of its time). Measured (instructions, bvh / power / uniform):
-// shade 11927 / 8683 / 8665, fused 12034 / 10103 / 10082.
+// shade 12803 / 9657 / 9648, fused 13251 / 11378 / 11363.
 TEST(SpecializationSpirv, TheLightSelectionLeavesNoneOfTheOthersCode) {
   const fs::path dir = mixtrace::testing::scratchDir("spirv");
   const std::string uniform = std::to_string(shared::kLightSelectUniform);
