@@ -31,6 +31,18 @@
 
 SHARED_BEGIN_WITH_BUFFERS
 
+// How many of the current leaf's triangles one step of the walk tests. Scalar code (C++) tests
+// the whole leaf before it pops the next box, the order of a recursive traversal. SIMD code (GLSL)
+// tests one: a SIMD group runs every branch for all its lanes under a mask (lavapipe does even
+// when they all agree), so a step costs one box pair plus one triangle whatever each lane needs,
+// and a lane whose leaf still has triangles left goes on down the tree beside them instead of
+// holding up the group (benchmarks/README.md, "What a pass costs on lavapipe").
+#ifdef __cplusplus
+#define BVH_TRIANGLE_STEP while
+#else
+#define BVH_TRIANGLE_STEP if
+#endif
+
 // One entry per tree level suffices; the builder caps the depth at 60 (kBvhMaxDepth).
 const uint kBvhStackSize = 64u;
 // Box entry distance meaning "missed" (any real entry is below it).
@@ -103,12 +115,33 @@ SHARED_FN bool bvhIntersectTriangle(TriangleGeom tri, vec3 origin, vec3 directio
   return t > 0.0f && t < tMax;
 }
 
+// Tests triangle i (BVH order) against the ray and, when it is hit before hit.t (and, with alpha,
+// not passed through there), makes it the hit. Returns whether it did.
+SHARED_FN bool bvhLeafTriangle(uint i, vec3 origin, vec3 direction, INOUT(HitRecord) hit) {
+  float t = 0.0f;
+  float u = 0.0f;
+  float v = 0.0f;
+  if (!bvhIntersectTriangle(BVH_TRIANGLE(i), origin, direction, hit.t, t, u, v)) return false;
+#ifdef BVH_ALPHA_PASSES
+  if (BVH_ALPHA_PASSES(i, u, v, origin, direction)) return false;
+#endif
+  hit.t = t;
+  hit.triangle = i;
+  hit.u = u;
+  hit.v = v;
+  return true;
+}
+
 // The one walk behind traceClosest and traceAny. With stopAtFirstHit it returns at the first
 // triangle hit with 0 < t < tMax (any hit will do: shadow rays), otherwise it keeps the closest.
 // Callers pass a constant, so the compiler folds the flag and each caller gets its own loop.
 // Until a hit, hit.t is tMax, so both searches test the same boxes in the same order; and every
 // box the any-hit search pushes starts before tMax * kBvhExitScale, so the pop test below
 // passes there and is skipped.
+// Each turn of the loop is one step of the walk (a node's boxes, or taking the next leaf once the
+// last one's triangles are done) and one step through the leaf's triangles (BVH_TRIANGLE_STEP).
+// The any-hit search tests its triangles first, so a blocker ends the walk a step sooner; the
+// closest-hit search tests them before it pops, so the pop culls against the nearest hit yet.
 SHARED_FN HitRecord bvhTraverse(vec3 origin, vec3 direction, float tMax, bool stopAtFirstHit) {
   HitRecord hit;
   hit.t = tMax;
@@ -120,63 +153,68 @@ SHARED_FN HitRecord bvhTraverse(vec3 origin, vec3 direction, float tMax, bool st
   uint stack[kBvhStackSize];
   float stackEntry[kBvhStackSize];
   uint stackSize = 0u;
-  uint current = 0u;  // node 0, the root: its two boxes are the first test
-  while (true) {
-    if (bvhRefIsLeaf(current)) {
-      uint first = bvhLeafFirst(current);
-      uint end = first + bvhLeafCount(current);
-      for (uint i = first; i < end; ++i) {
-        float t = 0.0f;
-        float u = 0.0f;
-        float v = 0.0f;
-        if (bvhIntersectTriangle(BVH_TRIANGLE(i), origin, direction, hit.t, t, u, v)) {
-#ifdef BVH_ALPHA_PASSES
-          if (BVH_ALPHA_PASSES(i, u, v, origin, direction)) continue;
-#endif
-          hit.t = t;
-          hit.triangle = i;
-          hit.u = u;
-          hit.v = v;
-          if (stopAtFirstHit) return hit;
+  uint current = 0u;  // the next child to visit; node 0, the root, is the first
+  bool walking = true;  // false once the stack holds no box the ray still needs
+  uint triNext = 0u;  // the triangles [triNext, triEnd) of the leaf being tested
+  uint triEnd = 0u;
+  while (walking || triNext < triEnd) {
+    if (stopAtFirstHit) {
+      BVH_TRIANGLE_STEP (triNext < triEnd) {
+        if (bvhLeafTriangle(triNext++, origin, direction, hit)) return hit;
+      }
+    }
+    // The walk's step.
+    bool pop = false;
+    if (walking) {
+      if (bvhRefIsLeaf(current)) {
+        if (triNext == triEnd) {
+          triNext = bvhLeafFirst(current);
+          triEnd = triNext + bvhLeafCount(current);
+          pop = true;
+        }
+      } else {
+        BvhNode node = BVH_NODE(current);
+        float nearEntry = bvhBoxEntry(node.leftMin, node.leftMax, origin, invDir, hit.t);
+        float farEntry = bvhBoxEntry(node.rightMin, node.rightMax, origin, invDir, hit.t);
+        uint nearRef = node.leftRef;
+        uint farRef = node.rightRef;
+        // Nearer first: the closest hit shrinks the search sooner, and blockers near the origin
+        // are found sooner on average.
+        if (farEntry < nearEntry) {
+          float swapEntry = nearEntry;
+          nearEntry = farEntry;
+          farEntry = swapEntry;
+          uint swapRef = nearRef;
+          nearRef = farRef;
+          farRef = swapRef;
+        }
+        if (nearEntry < kBvhMiss) {
+          if (farEntry < kBvhMiss) {
+            stack[stackSize] = farRef;
+            stackEntry[stackSize] = farEntry;
+            ++stackSize;
+          }
+          current = nearRef;
+        } else {
+          pop = true;
         }
       }
-    } else {
-      BvhNode node = BVH_NODE(current);
-      float nearEntry = bvhBoxEntry(node.leftMin, node.leftMax, origin, invDir, hit.t);
-      float farEntry = bvhBoxEntry(node.rightMin, node.rightMax, origin, invDir, hit.t);
-      uint nearRef = node.leftRef;
-      uint farRef = node.rightRef;
-      // Nearer first: the closest hit shrinks the search sooner, and blockers near the origin are
-      // found sooner on average.
-      if (farEntry < nearEntry) {
-        float swapEntry = nearEntry;
-        nearEntry = farEntry;
-        farEntry = swapEntry;
-        uint swapRef = nearRef;
-        nearRef = farRef;
-        farRef = swapRef;
-      }
-      if (nearEntry < kBvhMiss) {
-        if (farEntry < kBvhMiss) {
-          stack[stackSize] = farRef;
-          stackEntry[stackSize] = farEntry;
-          ++stackSize;
-        }
-        current = nearRef;
-        continue;
-      }
+    }
+    if (!stopAtFirstHit) {
+      BVH_TRIANGLE_STEP (triNext < triEnd) bvhLeafTriangle(triNext++, origin, direction, hit);
     }
     // Resume with the most recently pushed box that still starts before the closest hit.
-    bool resumed = false;
-    while (stackSize > 0u) {
-      --stackSize;
-      if (stopAtFirstHit || stackEntry[stackSize] <= hit.t * kBvhExitScale) {
-        current = stack[stackSize];
-        resumed = true;
-        break;
+    if (pop) {
+      walking = false;
+      while (stackSize > 0u) {
+        --stackSize;
+        if (stopAtFirstHit || stackEntry[stackSize] <= hit.t * kBvhExitScale) {
+          current = stack[stackSize];
+          walking = true;
+          break;
+        }
       }
     }
-    if (!resumed) break;
   }
   return hit;
 }
@@ -190,6 +228,8 @@ SHARED_FN HitRecord traceClosest(vec3 origin, vec3 direction, float tMax) {
 SHARED_FN bool traceAny(vec3 origin, vec3 direction, float tMax) {
   return bvhTraverse(origin, direction, tMax, true).triangle != kNoHit;
 }
+
+#undef BVH_TRIANGLE_STEP
 
 SHARED_END_WITH_BUFFERS
 #endif
