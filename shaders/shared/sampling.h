@@ -53,9 +53,17 @@ SHARED_FN float luminance(vec3 c) {
   return dot(c, vec3(0.2126f, 0.7152f, 0.0722f));
 }
 
-// One sRGB-encoded channel in [0, 1] to linear (IEC 61966-2-1 piecewise curve).
+// One sRGB-encoded channel in [0, 1] to linear (IEC 61966-2-1 piecewise curve). The power segment
+// ((c + 0.055) / 1.055)^2.4 is a rational fit of degree 4/4, within 6e-7 of it (relative) at every
+// 8-bit value and 1.4e-6 between them, as close as pow() in float (4e-7): a colour texture
+// decodes 12 channels per bilinear lookup, and on lavapipe the pows were a fifth of a textured
+// scene's shade pass (benchmarks/README.md, "What a pass costs on lavapipe").
 SHARED_FN float srgbToLinear(float c) {
-  return c <= 0.04045f ? c * (1.0f / 12.92f) : pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
+  float p = (((4.023686408996582f * c + 3.3877310752868652f) * c + 0.6408167481422424f) * c +
+             0.040300384163856506f) * c + 0.0008346024551428854f;
+  float q = (((0.04794520139694214f * c - 0.34395426511764526f) * c + 2.6193156242370605f) * c +
+             4.770065784454346f) * c + 1.0f;
+  return c <= 0.04045f ? c * (1.0f / 12.92f) : p / q;
 }
 
 // ---------------------------------------------------------------------------------------------

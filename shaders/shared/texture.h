@@ -26,10 +26,8 @@ SHARED_FN int wrapTexelCoord(int i, int n, uint mode) {
   return clamp(m, 0, n - 1);
 }
 
-SHARED_FN vec4 fetchTexel(TextureGpu t, int x, int y, bool srgb) {
-  uint x0 = uint(wrapTexelCoord(x, int(t.width), t.wrap & 3u));
-  uint y0 = uint(wrapTexelCoord(y, int(t.height), (t.wrap >> 2u) & 3u));
-  uint texel = TEXEL(t.offset + y0 * t.width + x0);
+// An RGBA8 texel as floats in [0, 1], sRGB-decoded (colour channels only) when srgb.
+SHARED_FN vec4 decodeTexel(uint texel, bool srgb) {
   vec4 c = vec4(float(texel & 255u), float((texel >> 8u) & 255u), float((texel >> 16u) & 255u),
                 float(texel >> 24u)) * (1.0f / 255.0f);
   if (srgb) {
@@ -51,8 +49,15 @@ SHARED_FN vec4 sampleTexture(int index, vec2 uv, bool srgb) {
   float fy = y - fy0;
   int x0 = int(fx0);
   int y0 = int(fy0);
-  vec4 a = mix(fetchTexel(t, x0, y0, srgb), fetchTexel(t, x0 + 1, y0, srgb), fx);
-  vec4 b = mix(fetchTexel(t, x0, y0 + 1, srgb), fetchTexel(t, x0 + 1, y0 + 1, srgb), fx);
+  // The four texels' two columns and two rows, each wrapped once.
+  uint modeX = t.wrap & 3u;
+  uint modeY = (t.wrap >> 2u) & 3u;
+  uint column0 = uint(wrapTexelCoord(x0, int(t.width), modeX));
+  uint column1 = uint(wrapTexelCoord(x0 + 1, int(t.width), modeX));
+  uint row0 = t.offset + uint(wrapTexelCoord(y0, int(t.height), modeY)) * t.width;
+  uint row1 = t.offset + uint(wrapTexelCoord(y0 + 1, int(t.height), modeY)) * t.width;
+  vec4 a = mix(decodeTexel(TEXEL(row0 + column0), srgb), decodeTexel(TEXEL(row0 + column1), srgb), fx);
+  vec4 b = mix(decodeTexel(TEXEL(row1 + column0), srgb), decodeTexel(TEXEL(row1 + column1), srgb), fx);
   return mix(a, b, fy);
 }
 

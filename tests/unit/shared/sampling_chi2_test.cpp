@@ -64,6 +64,22 @@ TEST(Colour, LuminanceAndSrgb) {
   EXPECT_NEAR(srgbToLinear(0.04045f), srgbToLinear(0.0404501f), 1e-6f);
 }
 
+// The rational fit of the power segment against the curve itself, in double: at every 8-bit value
+// (what textures hold) and on a fine grid between them.
+TEST(Colour, SrgbDecodeMatchesTheCurveAtEveryByteAndBetween) {
+  const auto curve = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
+  for (int k = 0; k <= 255; ++k) {
+    const double c = k / 255.0;
+    const double exact = curve(float(c));
+    EXPECT_LE(std::abs(srgbToLinear(float(c)) - exact), 7e-7 * exact) << "byte " << k;
+  }
+  for (int i = 0; i <= 100000; ++i) {
+    const float c = float(i) / 100000.0f;
+    const double exact = curve(c);
+    ASSERT_LE(std::abs(srgbToLinear(c) - exact), 1.5e-6 * exact + 1e-12) << "c " << c;
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 TEST(SamplingChi2, CosineHemisphere) {
   const auto fit = chi2::testSamplerAgainstPdf(
