@@ -22,6 +22,7 @@
 #define LIGHT_SELECT_BVH (LIGHT_SELECTION == kLightSelectBvh)
 #define EMITTERS_UNIFORM (LIGHT_SELECTION == kLightSelectUniform)
 #include "gpu/cms_statistics.glsl"
+#include "gpu/queue_append.glsl"
 #include "shared/bsdf.h"
 #include "shared/cms_sampling.h"
 #include "shared/cms_technique_source.h"
@@ -53,7 +54,8 @@ struct Vertex {
 // pass reads it (the 14 stores were a fifth of pt-power's shade pass; the shadow pass reads
 // `flags` only under CMS_SELECTION too).
 void queueShadowRecord(ShadowRay s) {
-  uint slot = atomicAdd(queues.shadowCount, 1u);
+  uint slot;
+  QUEUE_APPEND(queues.shadowCount, slot);
   shadowQueue[slot].origin = s.origin;
   shadowQueue[slot].tMax = s.tMax;
   shadowQueue[slot].direction = s.direction;
@@ -248,7 +250,8 @@ void sampleBsdf(Vertex v, INOUT(uint) rng) {
     cvState[v.path] = state;
   }
   uint queueOut = 1u - pc.queueIn;
-  uint slot = atomicAdd(queues.rayCount[queueOut], 1u);
+  uint slot;
+  QUEUE_APPEND(queues.rayCount[queueOut], slot);
   rayQueue[queueOut * pc.pathCount + slot] = v.path;
 }
 
