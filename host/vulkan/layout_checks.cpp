@@ -98,6 +98,7 @@ static_assert(bindingsDistinct(), "two buffer rows share a binding number");
 // The texel rows' elements are whole RGBA32UI texels, as many as the accessors of
 // shaders/gpu/texel_rows.glsl fetch.
 static_assert(sizeof(shared::BvhNode) == shared::kTexelsPerBvhNode * 16, "BvhNode: whole texels");
+static_assert(sizeof(shared::TextureGpu) == sizeof(glm::uvec4), "TextureGpu: stored as one uvec4 (textureFromWords)");
 static_assert(sizeof(shared::TriangleGeom) == shared::kTexelsPerTriangleGeom * 16, "TriangleGeom: whole texels");
 static_assert(sizeof(shared::TriangleShading) == shared::kTexelsPerTriangleShading * 16, "TriangleShading: whole texels");
 static_assert(sizeof(shared::MaterialGpu) == shared::kTexelsPerMaterial * 16, "MaterialGpu: whole texels");

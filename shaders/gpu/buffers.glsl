@@ -76,7 +76,7 @@ PASS_UNREAD_BUFFERS(DECLARE_BUFFER)
 #include "gpu/texel_rows.glsl"
 #define BVH_TRIANGLE(i) TRIANGLE(i)
 #define TRIANGLE_UV2(i) triangleUv2[i]
-#define TEXTURE(i) textures[i]
+#define TEXTURE(i) textureFromWords(textures[i])
 #define TEXEL(i) texels[i]
 #define ENV_DATA(i) environment[i]
 // How the method picks the scene's lights (shared/method_buffers.h); a light's cluster and its pmf

@@ -13,7 +13,8 @@
 #define BUFFER_TRIANGLE_SHADING(X) \
   X(TRIANGLE_SHADING, triangleShading, 3, TEXELS, TriangleShading, UPLOADED, "triangle shading data")
 #define BUFFER_MATERIALS(X) X(MATERIALS, materials, 4, TEXELS, MaterialGpu, UPLOADED, "materials")
-#define BUFFER_TEXTURES(X) X(TEXTURES, textures, 5, READ_ONLY, TextureGpu, UPLOADED, "texture table")
+// The texture table holds TextureGpu records as uvec4s, read with one load (textureFromWords).
+#define BUFFER_TEXTURES(X) X(TEXTURES, textures, 5, READ_ONLY, uvec4, UPLOADED, "texture table")
 #define BUFFER_TEXELS(X) X(TEXELS, texels, 6, READ_ONLY, uint, UPLOADED, "texels")
 #define BUFFER_LIGHTS(X) X(LIGHTS, lights, 7, TEXELS, LightGpu, UPLOADED, "lights")
 #define BUFFER_EMITTERS(X) X(EMITTERS, emitters, 8, TEXELS, EmitterGpu, UPLOADED, "emitters")

@@ -131,8 +131,12 @@ TEST(LayoutContract, GlslOffsetsAndStridesEqualCpp) {
 #undef TEXEL_ROW_TYPE
   EXPECT_EQ(texelTypes, (std::set<std::string>{"BvhNode", "TriangleGeom", "TriangleShading", "MaterialGpu", "LightGpu",
                                                "EmitterGpu", "LightBvhNodeGpu"}));
+  // Structs a row stores as plain words (the texture table: uvec4s, read by textureFromWords, whose
+  // word order tests/unit/shared/texture_wrap_test.cpp checks against these offsets).
+  const std::set<std::string> wordTypes = {"TextureGpu"};
   for (const auto& [name, layout] : cpp) {
-    if (!texelTypes.count(name)) EXPECT_TRUE(seen.count(name)) << name << " was found in no embedded shader";
+    if (!texelTypes.count(name) && !wordTypes.count(name))
+      EXPECT_TRUE(seen.count(name)) << name << " was found in no embedded shader";
   }
 }
 

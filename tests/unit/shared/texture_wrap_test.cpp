@@ -1,7 +1,8 @@
 // Texture wrap modes (shaders/shared/texture.h wrapTexelCoord, compiled as C++): the remainder it
 // takes from a float quotient equals the integer one for every coordinate below 2^24 in
-// magnitude, for repeat and mirror, and stays a valid texel beyond that.
+// magnitude, for repeat and mirror, and stays a valid texel beyond that. Also the texture table's record as words.
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -67,3 +68,21 @@ TEST(TextureWrap, HugeCoordinatesStillNameATexel) {
 }
 
 }  // namespace
+
+// The texture table stores each TextureGpu as the uvec4 of its bytes (shared/scene_buffers.h);
+// textureFromWords must give back the record the host wrote, member for member.
+TEST(TextureTable, WordsGiveBackTheHostsRecord) {
+  TextureGpu host{};
+  host.offset = 123456u;
+  host.width = 640u;
+  host.height = 7u;
+  host.wrap = kWrapMirror | (kWrapClamp << 2u);
+  glm::uvec4 words;
+  static_assert(sizeof(words) == sizeof(host), "one uvec4 per record");
+  std::memcpy(&words, &host, sizeof(host));
+  const TextureGpu back = textureFromWords(words);
+  EXPECT_EQ(back.offset, host.offset);
+  EXPECT_EQ(back.width, host.width);
+  EXPECT_EQ(back.height, host.height);
+  EXPECT_EQ(back.wrap, host.wrap);
+}
