@@ -94,13 +94,15 @@ std::string unusableReason(VkPhysicalDevice pd, VkSurfaceKHR surface) {
   vkGetPhysicalDeviceFeatures2(pd, &f);
   if (!f12.scalarBlockLayout) return "no scalarBlockLayout";
   if (!f.features.shaderInt64 || !f12.shaderBufferInt64Atomics) return "no 64-bit integer atomics";
-  // Subgroup ballots: the queues take one atomic per subgroup (shaders/gpu/queue_append.glsl).
+  // Subgroup ballots and sums: the queues and the fused kernel's ray counters take one atomic per
+  // subgroup (shaders/gpu/queue_append.glsl, shaders/wavefront/fused.comp).
   VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
   VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
   vkGetPhysicalDeviceProperties2(pd, &p2);
-  const VkSubgroupFeatureFlags ballot = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
-  if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) || (subgroup.supportedOperations & ballot) != ballot)
-    return "no subgroup ballots in compute shaders";
+  const VkSubgroupFeatureFlags needed =
+      VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+  if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) || (subgroup.supportedOperations & needed) != needed)
+    return "no subgroup ballots and sums in compute shaders";
   if (surface && !hasDeviceExtension(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) return "no VK_KHR_swapchain";
   return "";
 }

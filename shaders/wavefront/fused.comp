@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 // The fused schedule (fused_interface.h): each invocation draws its pixel's camera ray as
 // generate.comp does and traces the whole path (shared/path_tracer.h, the CPU backend's loop),
 // then leaves its radiance for accumulate.comp. For the methods without learning.
@@ -40,6 +41,13 @@ void main() {
   rays.extensionRays = 0u;
   rays.shadowRays = 0u;
   radiance[path] = tracePath(camera.position, direction, rng, pc.maxDepth, pc.lightCount, rays);
-  addToCounter(0u, rays.extensionRays);
-  addToCounter(1u, rays.shadowRays);
+  // One pair of atomics per subgroup, not per path: both worker threads of lavapipe would otherwise
+  // contend for the counters' cache line lane by lane (gpu/queue_append.glsl says what that cost
+  // the shade pass).
+  uint extensionRays = subgroupAdd(rays.extensionRays);
+  uint shadowRays = subgroupAdd(rays.shadowRays);
+  if (subgroupElect()) {
+    addToCounter(0u, extensionRays);
+    addToCounter(1u, shadowRays);
+  }
 }
