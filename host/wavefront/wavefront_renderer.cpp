@@ -145,11 +145,11 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   if (s.schedule == Schedule::Fused && !fusedScheduleRuns(s, lights))
     throw Error("--schedule fused traces pt-uniform, pt-power and pt-bvh without --aov; use --schedule wavefront or auto");
   // Auto is the wavefront on every device type: on lavapipe (the CPU device measured; Mesa 22.3,
-  // AVX2, 320x240 pt-power, side by side) the fused kernel traces 0.73-0.96x the wavefront's samples
-  // per second on every shipped scene, and at most 2 % more with a competing process per core
-  // (benchmarks/README.md, "Speed"). Starting a new path in a lane whose path ended (path
-  // regeneration) did not close the gap, so it is not the lanes' differing path lengths; the one
-  // loop runs every stage's code, masked, at every bounce.
+  // AVX2, 320x240 pt-power, side by side) the two schedules are even, the fused kernel 2-10 %
+  // faster on four shipped scenes and 23 % slower on veach_mis (1.01x in the geometric mean;
+  // benchmarks/README.md, "Speed"), and the default method (cms) needs the wavefront. Starting a
+  // new path in a lane whose path ended (path regeneration) did not speed the fused kernel up: its
+  // one loop runs every stage's code, masked, at every bounce.
   if (s.schedule == Schedule::Fused) fused_ = std::make_unique<FusedPass>(ctx, spec, bindings_);
 
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
