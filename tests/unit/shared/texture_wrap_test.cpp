@@ -1,6 +1,7 @@
 // Texture wrap modes (shaders/shared/texture.h wrapTexelCoord, compiled as C++): the remainder it
 // takes from a float quotient equals the integer one for every coordinate below 2^24 in
-// magnitude, for repeat and mirror, and stays a valid texel beyond that. Also the texture table's record as words.
+// magnitude, for repeat and mirror, and stays a valid texel beyond that. Also: the texture table's
+// records, stored as uvec4 words, read back as the host wrote them.
 #include <cstdint>
 #include <cstring>
 #include <vector>
