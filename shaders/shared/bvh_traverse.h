@@ -43,6 +43,19 @@ SHARED_BEGIN_WITH_BUFFERS
 #define BVH_TRIANGLE_STEP if
 #endif
 
+// The triangle test's rejections: scalar code returns at the first (most rays miss most
+// triangles); SIMD code gathers them into one flag and decides once, since a SIMD group computes
+// every line for all its lanes anyway and each early return costs it a lane mask to keep.
+#ifdef __cplusplus
+#define BVH_REJECTIONS
+#define BVH_REJECT_IF(rejected) if (rejected) return false
+#define BVH_NOT_REJECTED true
+#else
+#define BVH_REJECTIONS bool bvhRejected = false
+#define BVH_REJECT_IF(rejected) bvhRejected = bvhRejected || (rejected)
+#define BVH_NOT_REJECTED (!bvhRejected)
+#endif
+
 // One entry per tree level suffices; the builder caps the depth at 60 (kBvhMaxDepth).
 const uint kBvhStackSize = 64u;
 // Box entry distance meaning "missed" (any real entry is below it).
@@ -66,6 +79,12 @@ SHARED_FN vec3 bvhSafeReciprocal(vec3 d) {
               1.0f / bvhSafeComponent(d.z));
 }
 
+// min and max as one compare and select. Every operand here is finite (bvhSafeReciprocal keeps
+// 1 / d finite and boxes are finite), so GLSL's min/max, which lavapipe makes NaN-aware (a
+// compare for unordered operands and a blend more per call), would buy nothing.
+SHARED_FN float bvhMin(float a, float b) { return a < b ? a : b; }
+SHARED_FN float bvhMax(float a, float b) { return a > b ? a : b; }
+
 // Distance at which the ray enters the box (0 when it starts inside), or kBvhMiss when it misses
 // the box or reaches it only beyond tFar (give or take the rounding slack of kBvhExitScale).
 SHARED_FN float bvhBoxEntry(vec3 boundsMin, vec3 boundsMax, vec3 origin, vec3 invDir, float tFar) {
@@ -73,10 +92,14 @@ SHARED_FN float bvhBoxEntry(vec3 boundsMin, vec3 boundsMax, vec3 origin, vec3 in
   // when the origin is far from the world origin but close to the box.
   vec3 t0 = (boundsMin - origin) * invDir;
   vec3 t1 = (boundsMax - origin) * invDir;
-  vec3 tLow = min(t0, t1);
-  vec3 tHigh = max(t0, t1);
-  float enter = max(max(tLow.x, tLow.y), max(tLow.z, 0.0f));
-  float exit = min(min(tHigh.x, tHigh.y), min(tHigh.z, tFar)) * kBvhExitScale;
+  float lowX = bvhMin(t0.x, t1.x);
+  float lowY = bvhMin(t0.y, t1.y);
+  float lowZ = bvhMin(t0.z, t1.z);
+  float highX = bvhMax(t0.x, t1.x);
+  float highY = bvhMax(t0.y, t1.y);
+  float highZ = bvhMax(t0.z, t1.z);
+  float enter = bvhMax(bvhMax(lowX, lowY), bvhMax(lowZ, 0.0f));
+  float exit = bvhMin(bvhMin(highX, highY), bvhMin(highZ, tFar)) * kBvhExitScale;
   return enter <= exit ? enter : kBvhMiss;
 }
 
@@ -92,6 +115,7 @@ SHARED_FN float bvhBoxEntry(vec3 boundsMin, vec3 boundsMax, vec3 origin, vec3 in
 // are rescaled by the triangle's toUnit / fromUnit (shared/layouts.h triangleGeom says why).
 SHARED_FN bool bvhIntersectTriangle(TriangleGeom tri, vec3 origin, vec3 direction, float tMax,
                                     OUT(float) t, OUT(float) u, OUT(float) v) {
+  BVH_REJECTIONS;
   float toUnit = tri.toUnit;
   float fromUnit = tri.fromUnit;
   vec3 e1 = tri.e1 * toUnit;
@@ -102,17 +126,16 @@ SHARED_FN bool bvhIntersectTriangle(TriangleGeom tri, vec3 origin, vec3 directio
   float absDet = det * flip;
   vec3 s = (origin - tri.v0) * toUnit;
   float uScaled = dot(s, p) * flip;
-  if (uScaled < 0.0f || uScaled > absDet) return false;
+  BVH_REJECT_IF(uScaled < 0.0f || uScaled > absDet);
   vec3 q = cross(s, e1);
   float vScaled = dot(direction, q) * flip;
   float tScaled = dot(e2, q) * flip;
-  if (vScaled < 0.0f || uScaled + vScaled > absDet || tScaled <= 0.0f || absDet == 0.0f)
-    return false;
+  BVH_REJECT_IF(vScaled < 0.0f || uScaled + vScaled > absDet || tScaled <= 0.0f || absDet == 0.0f);
   float invDet = 1.0f / absDet;
   t = tScaled * invDet * fromUnit;
   u = uScaled * invDet;
   v = vScaled * invDet;
-  return t > 0.0f && t < tMax;
+  return BVH_NOT_REJECTED && t > 0.0f && t < tMax;
 }
 
 // Tests triangle i (BVH order) against the ray and, when it is hit before hit.t (and, with alpha,
@@ -230,6 +253,9 @@ SHARED_FN bool traceAny(vec3 origin, vec3 direction, float tMax) {
 }
 
 #undef BVH_TRIANGLE_STEP
+#undef BVH_REJECTIONS
+#undef BVH_REJECT_IF
+#undef BVH_NOT_REJECTED
 
 SHARED_END_WITH_BUFFERS
 #endif
