@@ -103,7 +103,8 @@ SHARED_FN float bvhBoxEntry(vec3 boundsMin, vec3 boundsMax, vec3 origin, vec3 in
   return enter <= exit ? enter : kBvhMiss;
 }
 
-// Möller–Trumbore with the division deferred until the ray is known to cross the triangle:
+// Möller–Trumbore with the division deferred until the ray is known to cross the triangle (in C++;
+// SIMD code divides for every lane and discards the rejected ones, BVH_REJECT_IF above):
 // u, v and t are first formed scaled by the determinant and compared against it after flipping
 // to a positive determinant. That needs no epsilon (which would be wrong at some scene scale):
 // a ray parallel to the triangle (det == 0, as for every ray against a zero-area triangle,
