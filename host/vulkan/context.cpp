@@ -9,6 +9,7 @@
 #include "util/error.h"
 #include "util/log.h"
 #include "vulkan/check.h"
+#include "vulkan/denormal_mode.h"
 #include "vulkan/device_choice.h"
 
 namespace mixtrace {
@@ -173,6 +174,9 @@ std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
 }  // namespace
 
 VulkanContext::VulkanContext(const ContextOptions& options) {
+  // A CPU driver's worker threads, started from here, take this thread's floating-point mode
+  // (vulkan/denormal_mode.h): they flush denormals; this thread keeps its own mode afterwards.
+  FlushDenormalsInScope flushInDriverThreads;
   std::vector<const char*> layers, extensions;
   if (options.validation) {
     if (hasLayer("VK_LAYER_KHRONOS_validation")) {

@@ -21,6 +21,7 @@
 #include "shared/display.h"
 #include "shared/layouts.h"
 #include "tests/cell_lookup_interface.h"
+#include "tests/float_mode_interface.h"
 #include "tests/pair_lookup_interface.h"
 #include "tests/texel_rows_interface.h"
 #include "tests/trace_rays_interface.h"

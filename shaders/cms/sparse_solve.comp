@@ -107,8 +107,8 @@ void addSolvedShare(uint remainderSlot, float share) {
 
 // s_t, l_t = A_tB s_t s_B and z_t = b_t s_t of a usable pair.
 void pairRow(Pair p, out float st, out float lt, out vec3 zt) {
-  st = sparseScale(scratchFloat(p.cell, kSparseRidge), p.aTT);
-  lt = p.aTB * (st * scratchFloat(p.cell, kSparseScaleB));   // s_t s_B first: exactly 0 when B is out
+  st = cmsScale(scratchFloat(p.cell, kSparseRidge), p.aTT);
+  lt = cmsCoupling(p.aTB, st, scratchFloat(p.cell, kSparseScaleB));
   zt = p.bT * st;
 }
 
@@ -132,7 +132,7 @@ void ridgeCell(uint cell) {
   float ridge = (cmsIsFinite(pc.ridge) && pc.ridge > 0.0) ? pc.ridge : 0.0;
   float r = count > 0.0 ? (ridge * (meanOverMax / count)) * maxDiag : 0.0;
   setScratchFloat(cell, kSparseRidge, r);
-  setScratchFloat(cell, kSparseScaleB, useB ? sparseScale(r, aBB) : 0.0);
+  setScratchFloat(cell, kSparseScaleB, useB ? cmsScale(r, aBB) : 0.0);
 }
 
 void pivotCell(uint cell) {

@@ -81,6 +81,18 @@ SHARED_FN bool cmsIsFinite3(vec3 v) { return cmsIsFinite(v.x) && cmsIsFinite(v.y
 // A diagonal entry of A that lets its technique take part in the system.
 SHARED_FN bool cmsUsableDiagonal(float a) { return cmsIsFinite(a) && a >= kSolveMinDiagonal; }
 
+// The Jacobi scale of a diagonal entry a with the ridge r: (a + r)^-1/2, as a^-1/2 (1 + r/a)^-1/2
+// so that neither a + r nor a tiny a underflowing against a large one is ever formed (r/a may
+// overflow to Inf: the scale is then 0, the technique's alpha 0). Both solves use it.
+SHARED_FN float cmsScale(float ridge, float a) { return (1.0f / sqrt(a)) / sqrt(1.0f + ridge / a); }
+
+// A technique's coupling with B in the scaled system, A_tB s_t s_B. The product s_t s_B alone is
+// denormal when both diagonals are near FLT_MAX (s ~ 2^-64 each), and GPUs flush denormals to 0
+// (so does lavapipe, host/vulkan/denormal_mode.h): A_tB is multiplied by the smaller scale first.
+// That product overflows only where the coupling itself does, and it is exactly 0 when B is out
+// (s_B = 0; A_tB is finite for a usable technique).
+SHARED_FN float cmsCoupling(float aTB, float st, float sB) { return (aTB * min(st, sB)) * max(st, sB); }
+
 SHARED_END
 
 // The solve itself reads and writes the cell buffers through accessors the includer defines:
@@ -116,11 +128,6 @@ SHARED_FN bool cmsClusterUsable(uint stats, uint L, uint k) {
          cmsIsFinite3(cmsReadStats3(stats + statsBk(L, k, 0u)));
 }
 
-// The Jacobi scale of a diagonal entry a with the ridge r: (a + r)^-1/2, as a^-1/2 (1 + r/a)^-1/2
-// so that neither a + r nor a tiny a underflowing against a large one is ever formed (r/a may
-// overflow to Inf: the scale is then 0, the technique's alpha 0).
-SHARED_FN float cmsScale(float ridge, float a) { return (1.0f / sqrt(a)) / sqrt(1.0f + ridge / a); }
-
 // Row k of the scaled system and its forward substitution: sk = (A_kk + r)^-1/2, lBk = L_Bk (0 when
 // B is not in the system, sB = 0), zk = b'_k. False when cluster k has no usable samples.
 SHARED_FN bool cmsClusterRow(uint stats, uint L, uint k, float sB, float ridge, OUT(float) sk, OUT(float) lBk,
@@ -130,9 +137,7 @@ SHARED_FN bool cmsClusterRow(uint stats, uint L, uint k, float sB, float ridge, 
   zk = vec3(0.0f);
   if (!cmsClusterUsable(stats, L, k)) return false;
   sk = cmsScale(ridge, CELL_STATS(stats + statsAkk(L, k)));
-  // sk * sB first: finite (both <= 2^63), and exactly 0 when B is out, so a huge A_kB cannot
-  // turn into Inf * 0.
-  lBk = CELL_STATS(stats + statsAkB(L, k)) * (sk * sB);
+  lBk = cmsCoupling(CELL_STATS(stats + statsAkB(L, k)), sk, sB);
   zk = cmsReadStats3(stats + statsBk(L, k, 0u)) * sk;
   return true;
 }
@@ -177,12 +182,12 @@ SHARED_FN void solveCell(uint cell, SolveParams params) {
   float maxDiag = useB ? aBB : 0.0f;
   for (uint k = 0u; k < L; ++k)
     if (cmsClusterUsable(stats, L, k)) maxDiag = max(maxDiag, CELL_STATS(stats + statsAkk(L, k)));
-  float invMax = maxDiag > 0.0f ? 1.0f / maxDiag : 1.0f;
-  float meanOverMax = useB ? aBB * invMax : 0.0f;
+  // Divided, not multiplied by 1 / max: near FLT_MAX that reciprocal is denormal, which GPUs flush.
+  float meanOverMax = useB ? aBB / maxDiag : 0.0f;
   float usable = useB ? 1.0f : 0.0f;
   for (uint k = 0u; k < L; ++k)
     if (cmsClusterUsable(stats, L, k)) {
-      meanOverMax += CELL_STATS(stats + statsAkk(L, k)) * invMax;
+      meanOverMax += CELL_STATS(stats + statsAkk(L, k)) / maxDiag;
       usable += 1.0f;
     }
   float r = usable > 0.0f ? (ridge * (meanOverMax / usable)) * maxDiag : 0.0f;

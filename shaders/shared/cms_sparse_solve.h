@@ -47,7 +47,7 @@
 #define MIXTRACE_SHARED_CMS_SPARSE_SOLVE_H
 #include "shared/buffer_table.h"
 #include "shared/cms_pair_layout.h"
-#include "shared/cms_solve.h"   // the policy constants and cmsUsableDiagonal (no buffers)
+#include "shared/cms_solve.h"   // the policy constants, cmsUsableDiagonal, cmsScale, cmsCoupling (no buffers)
 #include "shared/dialect.h"
 
 // The per-cell scratch, uints (floats as their bits), kSparseScratchStride per cell; owned and
@@ -113,10 +113,6 @@ struct SparseSolveConstants {
   float ridge;                // relative to the mean diagonal of the techniques in the system
   uint maxGroupsX;            // the device's maxComputeWorkGroupCount[0]: kSparsePairArgs wraps into y past it
 };
-
-// The Jacobi scale (a + r)^-1/2 as a^-1/2 (1 + r/a)^-1/2, as the per-cluster solve forms it
-// (shared/cms_solve.h): neither a + r nor a tiny a against a large r is ever formed.
-SHARED_FN float sparseScale(float ridge, float a) { return (1.0f / sqrt(a)) / sqrt(1.0f + ridge / a); }
 
 // The 2D grid of `groups` workgroups on a device with at most `maxX` in x (the rest wrap into y; the
 // shader recovers the item from both): the host's dispatches of the cell stages and

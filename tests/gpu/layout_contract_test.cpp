@@ -23,6 +23,7 @@
 #include "shared/layouts.h"
 #include "support/spirv_reader.h"
 #include "tests/cell_lookup_interface.h"
+#include "tests/float_mode_interface.h"
 #include "tests/pair_lookup_interface.h"
 #include "tests/texel_rows_interface.h"
 #include "tests/trace_rays_interface.h"
@@ -188,6 +189,7 @@ std::map<std::string, Interface> interfaces() {
       {"cell_lookup", INTERFACE(CELL_LOOKUP_BUFFERS, CellLookupConstants)},
       {"pair_lookup", INTERFACE(PAIR_LOOKUP_BUFFERS, PairLookupConstants)},
       {"texel_rows", INTERFACE(TEXEL_ROWS_BUFFERS, TexelRowsConstants)},
+      {"float_mode", INTERFACE(FLOAT_MODE_BUFFERS, FloatModeConstants)},
   };
 #undef INTERFACE
 #undef INTERFACE_WITH_UNREAD
