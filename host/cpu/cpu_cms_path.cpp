@@ -81,7 +81,7 @@ class CmsPath {
       v.bsdf = surfaceBsdf(sh);
       v.frame = makeOrthonormalBasis(sh.shadingNormal);
       v.wo = toLocal(v.frame, -direction);
-      scatterOrigins(sh.position, hit.triangle, hit.u, hit.v, sh.geometricNormal, bsdfTransmits(v.bsdf), v.next,
+      scatterOrigins(sh.position, sh.positionError, sh.geometricNormal, bsdfTransmits(v.bsdf), v.next,
                      v.nextBelow);
       v.beta = beta;
       enterCell(v);

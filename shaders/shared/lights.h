@@ -92,11 +92,15 @@ SHARED_FN vec3 unitEdgeCross(TriangleGeom g, OUT(float) len1, OUT(float) len2) {
   return cross(g.e1 / len1, g.e2 / len2);
 }
 
-SHARED_FN vec3 triangleGeometricNormal(TriangleGeom g) {
-  float len1, len2;
-  vec3 c = unitEdgeCross(g, len1, len2);
+// The unit normal along unitEdgeCross's c (0 for a degenerate triangle).
+SHARED_FN vec3 normalOfUnitEdgeCross(vec3 c) {
   float sinAngle = scaledLength(c);
   return sinAngle > 0.0f ? c / sinAngle : vec3(0.0f);
+}
+
+SHARED_FN vec3 triangleGeometricNormal(TriangleGeom g) {
+  float len1, len2;
+  return normalOfUnitEdgeCross(unitEdgeCross(g, len1, len2));
 }
 
 // Solid-angle density of a uniform point on the triangle seen along d (from the shading point to
@@ -106,22 +110,27 @@ SHARED_FN vec3 triangleGeometricNormal(TriangleGeom g) {
 // that the coordinates handle fine (1e-12 -> area 1e-24, distance^2 underflows; 1e15 -> area
 // 1e30 times a distance^2 of 1e30 overflows). 0 when the point has no density (degenerate
 // triangle, a point in the triangle's plane or at the shading point).
-SHARED_FN float triangleSolidAnglePdf(TriangleGeom g, vec3 d) {
-  float len1, len2;
-  vec3 c = unitEdgeCross(g, len1, len2);
-  float dist = scaledLength(d);
+// The same from unitEdgeCross's results and d's scaledLength `dist`, for a caller that has them.
+SHARED_FN float solidAnglePdfOfUnitEdgeCross(vec3 c, float len1, float len2, vec3 d, float dist) {
   if (!(dist > 0.0f && len1 > 0.0f && len2 > 0.0f)) return 0.0f;
   float cosTimesSin = abs(dot(c, d / dist));
   if (!(cosTimesSin > 0.0f)) return 0.0f;
   return 2.0f * (dist / len1) * (dist / len2) / cosTimesSin;
 }
 
+SHARED_FN float triangleSolidAnglePdf(TriangleGeom g, vec3 d) {
+  float len1, len2;
+  vec3 c = unitEdgeCross(g, len1, len2);
+  return solidAnglePdfOfUnitEdgeCross(c, len1, len2, d, scaledLength(d));
+}
+
 // Radiance leaving triangle `tri` at barycentrics (u, v) towards `towardsViewer` (any length).
 // One-sided (front face = counter-clockwise) unless the material is double-sided.
-SHARED_FN vec3 emittedRadiance(uint tri, float u, float v, vec3 towardsViewer) {
+// emittedRadianceOf takes the triangle's geometry `g` = TRIANGLE(tri) from a caller that has it
+// (lavapipe loads a texel row once per call, whatever an earlier load read).
+SHARED_FN vec3 emittedRadianceOf(uint tri, TriangleGeom g, float u, float v, vec3 towardsViewer) {
   TriangleShading s = TRIANGLE_SHADING(tri);
   MaterialGpu m = MATERIAL(s.material);
-  TriangleGeom g = TRIANGLE(tri);
   bool front = dot(cross(g.e1, g.e2), towardsViewer) > 0.0f;
   if (!front && (m.flags & kMaterialDoubleSided) == 0u) return vec3(0.0f);
   vec3 le = m.emission;
@@ -130,6 +139,10 @@ SHARED_FN vec3 emittedRadiance(uint tri, float u, float v, vec3 towardsViewer) {
     le = le * vec3(t.x, t.y, t.z);
   }
   return le;
+}
+
+SHARED_FN vec3 emittedRadiance(uint tri, float u, float v, vec3 towardsViewer) {
+  return emittedRadianceOf(tri, TRIANGLE(tri), u, v, towardsViewer);
 }
 
 // Solid-angle pdf with which sampleLightPoint() produces the point `lightPoint` on emitting
@@ -172,11 +185,20 @@ SHARED_FN float areaLightPdf(uint tri, vec3 from, vec3 lightPoint) {
   return pointPdf > 0.0f ? lightSelectPmf(lightOfTriangle(tri)) * pointPdf : 0.0f;
 }
 
+// areaLightPdfAt for triangle tri's emitter e (TriangleShading.emitter, SurfaceHit.emitter), from a
+// caller that has it: the emitter is read once.
+SHARED_FN float emitterLightPdfAt(uint e, uint tri, vec3 from, vec3 fromNormal, vec3 lightPoint) {
+  EmitterGpu em = EMITTER(e);
+  float pointPdf = emitterPmfInLight(em, LIGHT(em.light).emitterCount, EMITTERS_UNIFORM) *
+                   triangleSolidAnglePdf(TRIANGLE(tri), lightPoint - from);
+  return pointPdf > 0.0f ? lightSelectPmfAt(from, fromNormal, em.light) * pointPdf : 0.0f;
+}
+
 // areaLightPdf for a selection that depends on the point: `from` and `fromNormal` are the point and
 // normal the light sample's selection used (sampleLightAt's selectFrom, selectNormal).
 SHARED_FN float areaLightPdfAt(uint tri, vec3 from, vec3 fromNormal, vec3 lightPoint) {
-  float pointPdf = areaLightPointPdf(tri, from, lightPoint);
-  return pointPdf > 0.0f ? lightSelectPmfAt(from, fromNormal, lightOfTriangle(tri)) * pointPdf : 0.0f;
+  int e = TRIANGLE_SHADING(tri).emitter;
+  return e < 0 ? 0.0f : emitterLightPdfAt(uint(e), tri, from, fromNormal, lightPoint);
 }
 
 // The solid-angle pdf with which sampleLightAt (selection at from, fromNormal) produces the
@@ -223,11 +245,15 @@ SHARED_FN bool sampleLightPoint(vec3 p, uint light, float uEmitter, vec2 uPoint,
     s.distance = scaledLength(d);
     if (!(s.distance > 0.0f)) return false;
     s.direction = d / s.distance;
-    s.normal = triangleGeometricNormal(g);
-    float pointPdf = triangleSolidAnglePdf(g, d);
+    // Each load and the edge cross once: the same values as triangleGeometricNormal(g),
+    // triangleSolidAnglePdf(g, d), emitterPmf(e) and emittedRadiance(em.triangle, ...).
+    float len1, len2;
+    vec3 c = unitEdgeCross(g, len1, len2);
+    s.normal = normalOfUnitEdgeCross(c);
+    float pointPdf = solidAnglePdfOfUnitEdgeCross(c, len1, len2, d, s.distance);
     if (!(pointPdf > 0.0f)) return false;
-    s.pdf = emitterPmf(e) * pointPdf;
-    s.radiance = emittedRadiance(em.triangle, bary.y, bary.z, -d);
+    s.pdf = emitterPmfInLight(em, l.emitterCount, EMITTERS_UNIFORM) * pointPdf;
+    s.radiance = emittedRadianceOf(em.triangle, g, bary.y, bary.z, -d);
     return !isBlack(s.radiance);
   }
   if (HAS_ENVIRONMENT && l.kind == kLightEnvironment) {

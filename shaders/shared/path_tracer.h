@@ -48,11 +48,11 @@ SHARED_FN vec3 tracePath(vec3 origin, vec3 direction, INOUT(uint) rng, uint maxD
     }
     SurfaceHit sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
 
-    if (HAS_AREA_LIGHTS && TRIANGLE_SHADING(hit.triangle).emitter >= 0) {
+    if (HAS_AREA_LIGHTS && sh.emitter >= 0) {
       vec3 le = emittedRadiance(hit.triangle, hit.u, hit.v, -direction);
       float weight = 1.0f;
       if (previousBsdfPdf > 0.0f) {
-        float lightPdf = areaLightPdfAt(hit.triangle, origin, previousNormal, sh.position);
+        float lightPdf = emitterLightPdfAt(uint(sh.emitter), hit.triangle, origin, previousNormal, sh.position);
         weight = previousBsdfPdf / (previousBsdfPdf + lightPdf);
       }
       radiance += throughput * le * weight;
@@ -64,7 +64,7 @@ SHARED_FN vec3 tracePath(vec3 origin, vec3 direction, INOUT(uint) rng, uint maxD
     vec3 wo = toLocal(frame, -direction);
     vec3 next;
     vec3 nextBelow;
-    scatterOrigins(sh.position, hit.triangle, hit.u, hit.v, sh.geometricNormal, bsdfTransmits(bsdf), next, nextBelow);
+    scatterOrigins(sh.position, sh.positionError, sh.geometricNormal, bsdfTransmits(bsdf), next, nextBelow);
 
     // Draws in named steps: C++ leaves the order of constructor arguments unspecified, and the
     // same seed gives every schedule the same random numbers in the same order.

@@ -32,9 +32,6 @@ SHARED_FN vec3 trianglePointError(TriangleGeom g, float u, float v) {
   return kSurfacePointRelativeError * (abs(g.v0) + abs(u * g.e1) + abs(v * g.e2));
 }
 
-// The same for the hit (u, v) on triangle `tri` (BVH order, as HitRecord.triangle).
-SHARED_FN vec3 hitPointError(uint tri, float u, float v) { return trianglePointError(TRIANGLE(tri), u, v); }
-
 // p moved off its surface along n (unit geometric normal on the side the new ray leaves towards)
 // by the distance that clears p's error box `pError`.
 SHARED_FN vec3 offsetRayOrigin(vec3 p, vec3 pError, vec3 n) {
@@ -42,12 +39,11 @@ SHARED_FN vec3 offsetRayOrigin(vec3 p, vec3 pError, vec3 n) {
   return p + d * n;
 }
 
-// The origins of the rays leaving hit (tri, u, v) at p with geometric normal n (on the incoming
-// side): offset to that side (`above`) and, for a BSDF that transmits, to the far side (`below`;
-// otherwise the same), for every integrator alike (scatter_side.h originTowards picks one).
-SHARED_FN void scatterOrigins(vec3 p, uint tri, float u, float v, vec3 n, bool transmits, OUT(vec3) above,
-                              OUT(vec3) below) {
-  vec3 pointError = hitPointError(tri, u, v);
+// The origins of the rays leaving a hit at p, with error bound pointError (trianglePointError,
+// SurfaceHit.positionError) and geometric normal n (on the incoming side): offset to that side
+// (`above`) and, for a BSDF that transmits, to the far side (`below`; otherwise the same), for
+// every integrator alike (scatter_side.h originTowards picks one).
+SHARED_FN void scatterOrigins(vec3 p, vec3 pointError, vec3 n, bool transmits, OUT(vec3) above, OUT(vec3) below) {
   above = offsetRayOrigin(p, pointError, n);
   below = transmits ? offsetRayOrigin(p, pointError, -n) : above;
 }

@@ -7,6 +7,7 @@
 #include "shared/dialect.h"
 #include "shared/layouts.h"
 #include "shared/lights.h"
+#include "shared/ray_offset.h"
 #include "shared/tangent_frame.h"
 #include "shared/texture.h"
 #include "shared/triangle_attributes.h"
@@ -14,11 +15,13 @@ SHARED_BEGIN_WITH_BUFFERS
 
 struct SurfaceHit {
   vec3 position;
+  vec3 positionError;    // rounding-error bound of `position` (ray_offset.h), for scatterOrigins
   vec3 geometricNormal;  // unit, on the side of the incoming ray
   vec3 shadingNormal;    // unit, same side as geometricNormal
   vec2 uv;              // the material's first texture coordinates
   vec2 uv2;             // its second (= uv unless its textures read two mappings)
   uint material;
+  int emitter;           // the triangle's emitter (TriangleShading.emitter): -1 where it emits nothing
   vec4 vertexColor;      // COLOR_0 (white without it): multiplies the base colour and its alpha
   bool fromInside;       // the ray hit the back face (for volumetric glass: it leaves the volume)
 };
@@ -55,6 +58,7 @@ SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDir
   TriangleShading s = TRIANGLE_SHADING(tri);
   SurfaceHit h;
   h.position = g.v0 + u * g.e1 + v * g.e2;
+  h.positionError = trianglePointError(g, u, v);
   vec3 ng = triangleGeometricNormal(g);   // normalize(cross) underflows for tiny triangles
   bool front = dot(ng, incomingDirection) < 0.0f;
   h.geometricNormal = front ? ng : -ng;
@@ -72,6 +76,7 @@ SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDir
   if (!(dot(ns, h.geometricNormal) > 0.0f)) ns = h.geometricNormal;
   h.shadingNormal = ns;
   h.material = s.material;
+  h.emitter = s.emitter;
   h.vertexColor = vec4(1.0f);
   if (HAS_VERTEX_COLORS)
     h.vertexColor = triangleVertexColor(s, u, v);

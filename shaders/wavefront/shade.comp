@@ -128,7 +128,8 @@ void addEmission(uint path, HitRecord hit, SurfaceHit sh, vec3 le, vec3 beta, fl
     } else {
       float lightPdf = hit.triangle == kNoHit
                            ? environmentLightPdfAt(rayOrigin[path], misNormal[path], rayDirection[path])
-                           : areaLightPdfAt(hit.triangle, rayOrigin[path], misNormal[path], sh.position);
+                           : emitterLightPdfAt(uint(sh.emitter), hit.triangle, rayOrigin[path], misNormal[path],
+                                                   sh.position);
       w = prevPdfB / (prevPdfB + lightPdf);
     }
   }
@@ -263,12 +264,12 @@ void main() {
   vec3 dir = rayDirection[path];
   vec3 beta = throughput[path];
   float prevPdfB = misPdf[path];   // p_B of the BSDF sample that made this ray; 0 for camera rays
-  bool hitEmitter = hit.triangle != kNoHit && HAS_AREA_LIGHTS && TRIANGLE_SHADING(hit.triangle).emitter >= 0;
+  SurfaceHit sh;
+  if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, dir);
+  bool hitEmitter = hit.triangle != kNoHit && HAS_AREA_LIGHTS && sh.emitter >= 0;
   bool escaped = hit.triangle == kNoHit && HAS_ENVIRONMENT && hasEnvironmentLight();
   vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -dir)
                        : escaped ? environmentRadiance(dir) : vec3(0.0);
-  SurfaceHit sh;
-  if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, dir);
 
   float cmsEmissionWeight = 1.0;
   if (CMS_SELECTION && prevPdfB > 0.0) cmsEmissionWeight = settlePreviousBsdfSample(path, hit, sh, le, prevPdfB);
@@ -289,7 +290,7 @@ void main() {
   v.bsdf = surfaceBsdf(sh);
   v.frame = makeOrthonormalBasis(sh.shadingNormal);
   v.wo = toLocal(v.frame, -dir);
-  scatterOrigins(sh.position, hit.triangle, hit.u, hit.v, sh.geometricNormal, bsdfTransmits(v.bsdf), v.origin,
+  scatterOrigins(sh.position, sh.positionError, sh.geometricNormal, bsdfTransmits(v.bsdf), v.origin,
                  v.originBelow);
   v.beta = beta;
   v.cell = kNoCell;
