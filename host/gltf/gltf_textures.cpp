@@ -1,4 +1,4 @@
-// glTF textures -> Texture: sampler wrap modes, image decoding, RGBA8 packing, average colour.
+// glTF textures -> Texture: sampler wrap modes and magnification filter, image decoding, RGBA8 packing, average colour.
 #include <array>
 #include <cmath>
 #include <climits>
@@ -21,6 +21,20 @@ uint32_t wrapMode(const LoadContext& ctx, int glWrap, int samplerIndex) {
       ctx.warning("sampler " + std::to_string(samplerIndex) + " has unknown wrap mode " + std::to_string(glWrap) +
                   "; using REPEAT");
       return shared::kWrapRepeat;
+  }
+}
+
+// Whether the sampler's magFilter asks for the nearest texel (bilinear otherwise, and when absent:
+// the spec leaves an undefined filter to the implementation).
+bool nearestFilter(const LoadContext& ctx, int glFilter, int samplerIndex) {
+  switch (glFilter) {
+    case -1: return false;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST: return true;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR: return false;
+    default:
+      ctx.warning("sampler " + std::to_string(samplerIndex) + " has unknown magFilter " + std::to_string(glFilter) +
+                  "; using LINEAR");
+      return false;
   }
 }
 
@@ -57,6 +71,7 @@ bool MaterialTable::convertTexture(int textureIndex, Texture& out) {
     const tinygltf::Sampler& sampler = model.samplers[size_t(texture.sampler)];
     out.wrapS = wrapMode(ctx_, sampler.wrapS, texture.sampler);
     out.wrapT = wrapMode(ctx_, sampler.wrapT, texture.sampler);
+    out.nearest = nearestFilter(ctx_, sampler.magFilter, texture.sampler);
   } else {
     out.wrapS = shared::kWrapRepeat;  // spec: no sampler means repeat wrapping
     out.wrapT = shared::kWrapRepeat;

@@ -54,7 +54,7 @@ PreparedScene prepareScene(Scene scene) {
     g.offset = uint32_t(p.texels.size());
     g.width = t.width;
     g.height = t.height;
-    g.wrap = t.wrapS | (t.wrapT << 2u);
+    g.sampling = t.wrapS | (t.wrapT << 2u) | (t.nearest ? shared::kTextureNearest : 0u);
     p.texels.insert(p.texels.end(), t.texels.begin(), t.texels.end());
     p.textures.push_back(g);
   }

@@ -33,6 +33,7 @@ struct Texture {
   uint32_t height = 0;
   uint32_t wrapS = shared::kWrapRepeat;
   uint32_t wrapT = shared::kWrapRepeat;
+  bool nearest = false;          // the sampler's magFilter is NEAREST (else bilinear)
   std::vector<uint32_t> texels;  // RGBA8 packed little-endian (R in the low byte), top row first
   glm::vec3 averageLinear{0.0f}; // mean of the sRGB-decoded texels (used for light power)
 };

@@ -152,13 +152,16 @@ const uint kTexelsPerMaterial = 5u;
 const uint kWrapRepeat = 0u;
 const uint kWrapClamp = 1u;
 const uint kWrapMirror = 2u;
+// TextureGpu.sampling's bit for a glTF magFilter of NEAREST: the texel a point lies in, unfiltered
+// (bilinear without it). Bits 0-1 hold wrapS, bits 2-3 wrapT.
+const uint kTextureNearest = 16u;
 
 // A texture inside the texel buffer (RGBA8 packed in a uint, row-major, top row first).
 struct TextureGpu {
   uint offset;         // first texel
   uint width;
   uint height;
-  uint wrap;           // wrapS | (wrapT << 2)
+  uint sampling;       // wrapS | (wrapT << 2) | kTextureNearest when the glTF sampler's magFilter is NEAREST
 };
 
 // A TextureGpu from the uvec4 the texture table stores it as (shared/scene_buffers.h): a pass
@@ -169,7 +172,7 @@ SHARED_FN TextureGpu textureFromWords(uvec4 w) {
   t.offset = w.x;
   t.width = w.y;
   t.height = w.z;
-  t.wrap = w.w;
+  t.sampling = w.w;
   return t;
 }
 

@@ -38,20 +38,28 @@ SHARED_FN vec4 decodeTexel(uint texel, bool srgb) {
   return c;
 }
 
+// The texture's colour at uv: bilinear, or the texel uv lies in where the glTF sampler's magFilter
+// is NEAREST (kTextureNearest). Nearest runs the bilinear code with its fractions set to 0 (mix
+// with weight 0 gives the first texel exactly), so SIMD lanes that sample textures with different
+// filters share one path. There are no mip maps: minFilter is not read (without ray
+// differentials a path tracer does not know a lookup's footprint; the pixel's samples average
+// what a minified texture shows).
 SHARED_FN vec4 sampleTexture(int index, vec2 uv, bool srgb) {
   TextureGpu t = TEXTURE(index);
+  bool nearest = (t.sampling & kTextureNearest) != 0u;
   // Texel centres sit at half-integer coordinates; floor() keeps negative UVs continuous.
-  float x = uv.x * float(t.width) - 0.5f;
-  float y = uv.y * float(t.height) - 0.5f;
+  float centre = nearest ? 0.0f : 0.5f;
+  float x = uv.x * float(t.width) - centre;
+  float y = uv.y * float(t.height) - centre;
   float fx0 = floor(x);
   float fy0 = floor(y);
-  float fx = x - fx0;
-  float fy = y - fy0;
+  float fx = nearest ? 0.0f : x - fx0;
+  float fy = nearest ? 0.0f : y - fy0;
   int x0 = int(fx0);
   int y0 = int(fy0);
   // The four texels' two columns and two rows, each wrapped once.
-  uint modeX = t.wrap & 3u;
-  uint modeY = (t.wrap >> 2u) & 3u;
+  uint modeX = t.sampling & 3u;
+  uint modeY = (t.sampling >> 2u) & 3u;
   uint column0 = uint(wrapTexelCoord(x0, int(t.width), modeX));
   uint column1 = uint(wrapTexelCoord(x0 + 1, int(t.width), modeX));
   uint row0 = t.offset + uint(wrapTexelCoord(y0, int(t.height), modeY)) * t.width;

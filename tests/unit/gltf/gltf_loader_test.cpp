@@ -547,7 +547,7 @@ std::vector<uint8_t> encodePng(int width, int height, int components, const std:
 
 double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
-TEST_F(GltfLoaderTest, DecodesTexturesWithWrapModesAndDeduplicates) {
+TEST_F(GltfLoaderTest, DecodesTexturesWithWrapModesFiltersAndDeduplicates) {
   // 2x2 RGBA, top row first: red, half-transparent green / blue, grey 188.
   const std::vector<uint8_t> rgba = {255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 255, 188, 188, 188, 255};
   const std::vector<uint8_t> png = encodePng(2, 2, 4, rgba);
@@ -559,7 +559,7 @@ TEST_F(GltfLoaderTest, DecodesTexturesWithWrapModesAndDeduplicates) {
   const int uv = b.vec2s({{0, 0}, {1, 0}, {0, 1}});
   const int pngView = b.view(png.data(), png.size());
   b.doc["images"] = json::array({{{"bufferView", pngView}, {"mimeType", "image/png"}}, {{"uri", "tex.png"}}});
-  b.doc["samplers"] = json::array({{{"wrapS", 33071}, {"wrapT", 33648}}});
+  b.doc["samplers"] = json::array({{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}}});
   b.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}, {{"source", 1}}});
   b.doc["materials"] = json::array({{{"pbrMetallicRoughness",
                                       {{"baseColorTexture", {{"index", 0}}},
@@ -584,6 +584,7 @@ TEST_F(GltfLoaderTest, DecodesTexturesWithWrapModesAndDeduplicates) {
   EXPECT_EQ(color.height, 2u);
   EXPECT_EQ(color.wrapS, mixtrace::shared::kWrapClamp);
   EXPECT_EQ(color.wrapT, mixtrace::shared::kWrapMirror);
+  EXPECT_TRUE(color.nearest);  // magFilter NEAREST
   ASSERT_EQ(color.texels.size(), 4u);
   EXPECT_EQ(color.texels[0], 0xFF0000FFu);  // red: R in the low byte
   EXPECT_EQ(color.texels[1], 0x8000FF00u);  // green, alpha 128
@@ -597,6 +598,7 @@ TEST_F(GltfLoaderTest, DecodesTexturesWithWrapModesAndDeduplicates) {
   const mixtrace::Texture& external = scene.textures[size_t(m.metallicRoughnessTexture)];
   EXPECT_EQ(external.wrapS, mixtrace::shared::kWrapRepeat);  // no sampler
   EXPECT_EQ(external.wrapT, mixtrace::shared::kWrapRepeat);
+  EXPECT_FALSE(external.nearest);  // no sampler: bilinear
   ASSERT_EQ(external.texels.size(), 1u);
   EXPECT_EQ(external.texels[0], 0xFF1E140Au);  // RGB expanded with opaque alpha
   EXPECT_NEAR(external.averageLinear.z, srgbToLinear(30.0 / 255.0), 1e-6);

@@ -1,7 +1,8 @@
 // Texture wrap modes (shaders/shared/texture.h wrapTexelCoord, compiled as C++): the remainder it
 // takes from a float quotient equals the integer one for every coordinate below 2^24 in
-// magnitude, for repeat and mirror, and stays a valid texel beyond that. Also: the texture table's
-// records, stored as uvec4 words, read back as the host wrote them.
+// magnitude, for repeat and mirror, and stays a valid texel beyond that. The nearest filter
+// (sampleTexture with kTextureNearest) returns the texel a point lies in, unblended. Also: the
+// texture table's records, stored as uvec4 words, read back as the host wrote them.
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -10,7 +11,7 @@
 
 #include "shared/layouts.h"
 
-// texture.h reads textures through these; this test calls only the wrap function.
+// texture.h reads textures through these; the filter tests point them at their own texture.
 namespace texture_test_buffers {
 const mixtrace::shared::TextureGpu* textures = nullptr;
 const uint32_t* texels = nullptr;
@@ -68,6 +69,47 @@ TEST(TextureWrap, HugeCoordinatesStillNameATexel) {
       }
 }
 
+// A 2x2 texture, top row first: red, green / blue, white (RGBA8, R in the low byte).
+const uint32_t kQuad[4] = {0xFF0000FFu, 0xFF00FF00u, 0xFFFF0000u, 0xFFFFFFFFu};
+
+glm::vec4 sampleQuad(uint32_t sampling, glm::vec2 uv) {
+  static TextureGpu texture{};
+  texture.offset = 0u;
+  texture.width = 2u;
+  texture.height = 2u;
+  texture.sampling = sampling;
+  texture_test_buffers::textures = &texture;
+  texture_test_buffers::texels = kQuad;
+  return sampleTexture(0, uv, false);
+}
+
+TEST(TextureFilter, NearestIsTheTexelThePointLiesInUnblended) {
+  const uint32_t nearest = kWrapRepeat | (kWrapRepeat << 2u) | kTextureNearest;
+  const glm::vec4 red(1, 0, 0, 1), green(0, 1, 0, 1), blue(0, 0, 1, 1), white(1, 1, 1, 1);
+  // Across each texel, including near its edges (bilinear blends every one of these points).
+  for (float a : {0.01f, 0.2f, 0.3f, 0.49f}) {
+    for (float b : {0.01f, 0.26f, 0.49f}) {
+      EXPECT_EQ(sampleQuad(nearest, {a, b}), red) << a << " " << b;
+      EXPECT_EQ(sampleQuad(nearest, {a + 0.5f, b}), green) << a << " " << b;
+      EXPECT_EQ(sampleQuad(nearest, {a, b + 0.5f}), blue) << a << " " << b;
+      EXPECT_EQ(sampleQuad(nearest, {a + 0.5f, b + 0.5f}), white) << a << " " << b;
+      // Repeat wrapping applies as for bilinear: one period to the left is the same texel.
+      EXPECT_EQ(sampleQuad(nearest, {a - 1.0f, b + 0.5f}), blue) << a << " " << b;
+    }
+  }
+}
+
+TEST(TextureFilter, BilinearBlendsTheFourNearestTexelCentres) {
+  const uint32_t linear = kWrapClamp | (kWrapClamp << 2u);
+  // At a texel centre, that texel; midway between the four centres, their mean.
+  EXPECT_EQ(sampleQuad(linear, {0.25f, 0.25f}), glm::vec4(1, 0, 0, 1));
+  const glm::vec4 mid = sampleQuad(linear, {0.5f, 0.5f});
+  EXPECT_NEAR(mid.x, 0.5f, 1e-6f);
+  EXPECT_NEAR(mid.y, 0.5f, 1e-6f);
+  EXPECT_NEAR(mid.z, 0.5f, 1e-6f);
+  EXPECT_NEAR(mid.w, 1.0f, 1e-6f);
+}
+
 }  // namespace
 
 // The texture table stores each TextureGpu as the uvec4 of its bytes (shared/scene_buffers.h);
@@ -77,7 +119,7 @@ TEST(TextureTable, WordsGiveBackTheHostsRecord) {
   host.offset = 123456u;
   host.width = 640u;
   host.height = 7u;
-  host.wrap = kWrapMirror | (kWrapClamp << 2u);
+  host.sampling = kWrapMirror | (kWrapClamp << 2u) | kTextureNearest;
   glm::uvec4 words;
   static_assert(sizeof(words) == sizeof(host), "one uvec4 per record");
   std::memcpy(&words, &host, sizeof(host));
@@ -85,5 +127,5 @@ TEST(TextureTable, WordsGiveBackTheHostsRecord) {
   EXPECT_EQ(back.offset, host.offset);
   EXPECT_EQ(back.width, host.width);
   EXPECT_EQ(back.height, host.height);
-  EXPECT_EQ(back.wrap, host.wrap);
+  EXPECT_EQ(back.sampling, host.sampling);
 }
