@@ -57,12 +57,15 @@ class CmsPath {
     for (uint32_t depth = 1; depth <= ctx_.maxDepth; ++depth) {
       ++counters_.extensionRays;
       HitRecord hit = traceClosest(origin, direction, kFloatMax);
-      const bool hitEmitter = hit.triangle != kNoHit && TRIANGLE_SHADING(hit.triangle).emitter >= 0;
-      const bool escaped = hit.triangle == kNoHit && hasEnvironmentLight();
-      const vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -direction)
-                                 : escaped ? environmentRadiance(direction) : vec3(0.0f);
       SurfaceHit sh;
-      if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
+      SurfaceMaterial sm;
+      if (hit.triangle != kNoHit) {
+        sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
+        sm = surfaceMaterial(sh);
+      }
+      const bool hitEmitter = hit.triangle != kNoHit && sh.emitter >= 0;
+      const bool escaped = hit.triangle == kNoHit && hasEnvironmentLight();
+      const vec3 le = hitEmitter ? surfaceEmission(sh, sm) : escaped ? environmentRadiance(direction) : vec3(0.0f);
 
       float emissionWeight = 1.0f;
       if (pending.pdf > 0.0f) emissionWeight = settlePendingBsdfSample(pending, hit, sh, le, origin, direction);
@@ -78,7 +81,7 @@ class CmsPath {
 
       Vertex v;
       v.sh = sh;
-      v.bsdf = surfaceBsdf(sh);
+      v.bsdf = surfaceBsdf(sh, sm);
       v.frame = makeOrthonormalBasis(sh.shadingNormal);
       v.wo = toLocal(v.frame, -direction);
       scatterOrigins(sh.position, sh.positionError, sh.geometricNormal, bsdfTransmits(v.bsdf), v.next,

@@ -26,7 +26,7 @@ SHARED_FN FirstHitAov firstHitAov(HitRecord hit, vec3 direction) {
   a.depth = 0.0f;
   if (hit.triangle == kNoHit) return a;
   SurfaceHit h = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
-  a.albedo = surfaceBsdf(h).baseColor;
+  a.albedo = surfaceBsdf(h, surfaceMaterial(h)).baseColor;
   a.normal = h.shadingNormal;
   a.depth = hit.t * length(direction);
   return a;

@@ -141,9 +141,6 @@ SHARED_FN vec3 emittedRadianceOf(uint tri, TriangleGeom g, float u, float v, vec
   return le;
 }
 
-SHARED_FN vec3 emittedRadiance(uint tri, float u, float v, vec3 towardsViewer) {
-  return emittedRadianceOf(tri, TRIANGLE(tri), u, v, towardsViewer);
-}
 
 // Solid-angle pdf with which sampleLightPoint() produces the point `lightPoint` on emitting
 // triangle `tri` as seen from `from`, given its light was chosen: triangle pmf / area, converted

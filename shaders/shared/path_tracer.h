@@ -47,9 +47,10 @@ SHARED_FN vec3 tracePath(vec3 origin, vec3 direction, INOUT(uint) rng, uint maxD
       break;
     }
     SurfaceHit sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, direction);
+    SurfaceMaterial sm = surfaceMaterial(sh);
 
     if (HAS_AREA_LIGHTS && sh.emitter >= 0) {
-      vec3 le = emittedRadiance(hit.triangle, hit.u, hit.v, -direction);
+      vec3 le = surfaceEmission(sh, sm);
       float weight = 1.0f;
       if (previousBsdfPdf > 0.0f) {
         float lightPdf = emitterLightPdfAt(uint(sh.emitter), hit.triangle, origin, previousNormal, sh.position);
@@ -59,7 +60,7 @@ SHARED_FN vec3 tracePath(vec3 origin, vec3 direction, INOUT(uint) rng, uint maxD
     }
     if (depth == maxDepth) break;
 
-    BsdfParams bsdf = surfaceBsdf(sh);
+    BsdfParams bsdf = surfaceBsdf(sh, sm);
     OrthonormalBasis frame = makeOrthonormalBasis(sh.shadingNormal);
     vec3 wo = toLocal(frame, -direction);
     vec3 next;

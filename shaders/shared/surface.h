@@ -83,30 +83,73 @@ SHARED_FN SurfaceHit makeSurfaceHit(uint tri, float u, float v, vec3 incomingDir
   return h;
 }
 
-SHARED_FN BsdfParams surfaceBsdf(SurfaceHit h) {
-  MaterialGpu m = MATERIAL(h.material);
-  vec3 baseColor = m.baseColor * vec3(h.vertexColor.x, h.vertexColor.y, h.vertexColor.z);
-  float metallic = HAS_METALS ? m.metallic : 0.0f;
-  float roughness = m.roughness;
-  if (HAS_TEXTURES) {
-    if (m.baseColorTexture >= 0) {
-      vec4 t = sampleTexture(m.baseColorTexture, surfaceUv(h, m.flags, kMaterialSecondUvBaseColor), true);
-      baseColor = baseColor * vec3(t.x, t.y, t.z);
-    }
-    if (m.metallicRoughnessTexture >= 0) {
-      vec4 t = sampleTexture(m.metallicRoughnessTexture, surfaceUv(h, m.flags, kMaterialSecondUvMetallicRoughness), false);
-      roughness = roughness * t.y;
-      metallic = HAS_METALS ? metallic * t.z : 0.0f;
-    }
-  }
+// The hit's material and what its textures say there (white where a slot has no texture).
+struct SurfaceMaterial {
+  MaterialGpu m;
+  vec4 baseColor;           // baseColorTexture (sRGB-decoded)
+  vec4 metallicRoughness;   // metallicRoughnessTexture: roughness in y, metalness in z
+  vec4 emissive;            // emissiveTexture (sRGB-decoded), only where the triangle emits
+  vec4 transmission;        // transmissionTexture: its factor in x
+};
+
+// The material's texture slots at the hit, looked up in one loop over the slots it uses: a SIMD
+// group runs both sides of every branch for all its lanes (lavapipe does even when they agree), so
+// one lookup site per slot cost every lane every slot's lookup, where the loop runs as many turns
+// as its lanes' materials have textures (one, for most files' materials; benchmarks/README.md,
+// "What a pass costs on lavapipe"). Scalar code looks up the same slots in the same order.
+SHARED_FN SurfaceMaterial surfaceMaterial(SurfaceHit h) {
+  SurfaceMaterial r;
+  r.m = MATERIAL(h.material);
+  r.baseColor = vec4(1.0f);
+  r.metallicRoughness = vec4(1.0f);
+  r.emissive = vec4(1.0f);
+  r.transmission = vec4(1.0f);
+  if (!HAS_TEXTURES) return r;
+  // One bit per slot with a texture: 1 base colour, 2 metallic-roughness, 4 emissive, 8 transmission.
+  uint pending = (r.m.baseColorTexture >= 0 ? 1u : 0u) | (r.m.metallicRoughnessTexture >= 0 ? 2u : 0u) |
+                 (HAS_AREA_LIGHTS && h.emitter >= 0 && r.m.emissiveTexture >= 0 ? 4u : 0u) |
+                 (HAS_TRANSMISSION && r.m.transmissionTexture >= 0 ? 8u : 0u);
+  // do-while, not while: lavapipe runs a loop's body until the end of the turn in which its last
+  // lane leaves, so a test at the top would cost a second, empty turn of lookups.
+  if (pending != 0u) do {
+    uint slot = (pending & 1u) != 0u ? 1u : (pending & 2u) != 0u ? 2u : (pending & 4u) != 0u ? 4u : 8u;
+    pending = pending & ~slot;
+    int index = slot == 1u ? r.m.baseColorTexture
+              : slot == 2u ? r.m.metallicRoughnessTexture
+              : slot == 4u ? r.m.emissiveTexture : r.m.transmissionTexture;
+    uint uvSlot = slot == 1u ? kMaterialSecondUvBaseColor
+                : slot == 2u ? kMaterialSecondUvMetallicRoughness
+                : slot == 4u ? kMaterialSecondUvEmissive : kMaterialSecondUvTransmission;
+    vec4 t = sampleTexture(index, surfaceUv(h, r.m.flags, uvSlot), slot == 1u || slot == 4u);
+    if (slot == 1u) r.baseColor = t;
+    if (slot == 2u) r.metallicRoughness = t;
+    if (slot == 4u) r.emissive = t;
+    if (slot == 8u) r.transmission = t;
+  } while (pending != 0u);
+  return r;
+}
+
+// The BSDF at the hit, its material's textures applied (a slot's white leaves its factor exact).
+SHARED_FN BsdfParams surfaceBsdf(SurfaceHit h, SurfaceMaterial sm) {
+  MaterialGpu m = sm.m;
+  vec3 baseColor = m.baseColor * vec3(h.vertexColor.x, h.vertexColor.y, h.vertexColor.z) *
+                   vec3(sm.baseColor.x, sm.baseColor.y, sm.baseColor.z);
+  float roughness = m.roughness * sm.metallicRoughness.y;
+  float metallic = HAS_METALS ? m.metallic * sm.metallicRoughness.z : 0.0f;
   BsdfParams p = makeBsdfParams(baseColor, metallic, roughness);
   if (HAS_TRANSMISSION && (m.transmission > 0.0f || m.ior != kDefaultIor)) {
-    float transmission = m.transmission;
-    if (HAS_TEXTURES && m.transmissionTexture >= 0)
-      transmission = transmission * sampleTexture(m.transmissionTexture, surfaceUv(h, m.flags, kMaterialSecondUvTransmission), false).x;
+    float transmission = m.transmission * sm.transmission.x;
     p = withTransmission(p, transmission, m.ior, (m.flags & kMaterialVolumetric) == 0u, h.fromInside);
   }
   return p;
+}
+
+// Radiance the hit's surface emits back along the ray (emittedRadiance of lights.h, from what the
+// hit already read): one-sided (the front face, where the ray did not come from inside) unless the
+// material is double-sided.
+SHARED_FN vec3 surfaceEmission(SurfaceHit h, SurfaceMaterial sm) {
+  if (h.fromInside && (sm.m.flags & kMaterialDoubleSided) == 0u) return vec3(0.0f);
+  return sm.m.emission * vec3(sm.emissive.x, sm.emissive.y, sm.emissive.z);
 }
 
 SHARED_END_WITH_BUFFERS

@@ -265,11 +265,14 @@ void main() {
   vec3 beta = throughput[path];
   float prevPdfB = misPdf[path];   // p_B of the BSDF sample that made this ray; 0 for camera rays
   SurfaceHit sh;
-  if (hit.triangle != kNoHit) sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, dir);
+  SurfaceMaterial sm;
+  if (hit.triangle != kNoHit) {
+    sh = makeSurfaceHit(hit.triangle, hit.u, hit.v, dir);
+    sm = surfaceMaterial(sh);
+  }
   bool hitEmitter = hit.triangle != kNoHit && HAS_AREA_LIGHTS && sh.emitter >= 0;
   bool escaped = hit.triangle == kNoHit && HAS_ENVIRONMENT && hasEnvironmentLight();
-  vec3 le = hitEmitter ? emittedRadiance(hit.triangle, hit.u, hit.v, -dir)
-                       : escaped ? environmentRadiance(dir) : vec3(0.0);
+  vec3 le = hitEmitter ? surfaceEmission(sh, sm) : escaped ? environmentRadiance(dir) : vec3(0.0);
 
   float cmsEmissionWeight = 1.0;
   if (CMS_SELECTION && prevPdfB > 0.0) cmsEmissionWeight = settlePreviousBsdfSample(path, hit, sh, le, prevPdfB);
@@ -287,7 +290,7 @@ void main() {
   Vertex v;
   v.path = path;
   v.sh = sh;
-  v.bsdf = surfaceBsdf(sh);
+  v.bsdf = surfaceBsdf(sh, sm);
   v.frame = makeOrthonormalBasis(sh.shadingNormal);
   v.wo = toLocal(v.frame, -dir);
   scatterOrigins(sh.position, sh.positionError, sh.geometricNormal, bsdfTransmits(v.bsdf), v.origin,
