@@ -113,6 +113,7 @@ RenderStats collectStats(const RenderOptions& o, const PreparedScene& prepared, 
   stats.cmsGridCellsAuto = setup.cellsChosen;
   stats.cmsAtomics = counters.statisticsAtomics;
   stats.schedule = counters.schedule;
+  stats.shadeQueue = counters.shadeQueue;
   stats.estimator = setup.estimator;
   stats.cmsGatheringSpp = counters.gatheringSamples;
   stats.cmsCvTechniques = counters.cvTechniques;

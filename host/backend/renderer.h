@@ -69,6 +69,7 @@ struct RenderCounters {
   uint64_t verticesWithoutCell = 0;   // CMS: vertices refused by a full table (they get no CV)
   std::string statisticsAtomics;      // CMS on Vulkan: "float" atomics or "cas" loops
   std::string schedule;               // Vulkan: "wavefront" or "fused" (what ran)
+  std::string shadeQueue;             // Vulkan wavefront: "hits" (shade ran only the rays that hit something) or "rays"
   uint32_t gatheringSamples = 0;      // CMS: sample passes that gathered statistics
   // The control variate's techniques (RenderSettings::perTriangleCv): "triangle" or "cluster"
   // (empty: the method has no control variate), and with "triangle" the pair table's use.

@@ -42,6 +42,7 @@ void writeStatsJson(const std::string& path, const RenderStats& s) {
   j["lights"] = s.lights;
   j["non_finite_samples"] = s.nonFiniteSamples;
   if (!s.schedule.empty()) j["schedule"] = s.schedule;
+  if (!s.shadeQueue.empty()) j["shade_queue"] = s.shadeQueue;
   if (s.cmsCellTableSize > 0) {
     j["cms_clusters"] = s.cmsClusters;
     j["cms_gathering_spp"] = s.cmsGatheringSpp;

@@ -26,6 +26,7 @@ struct RenderStats {
   uint32_t cmsGatheringSpp = 0;   // sample passes that gathered statistics (the training schedule)
   std::string cmsAtomics;   // how the statistics are added: "float" or "cas" (Vulkan)
   std::string schedule;     // Vulkan: "wavefront" or "fused"
+  std::string shadeQueue;   // Vulkan wavefront: "hits" or "rays" (RenderCounters::shadeQueue)
   // The control variate's techniques (cv, cms): "triangle" or "cluster", how many, whether
   // triangles were merged to fit the budget, and with "triangle" the (cell, technique) pair table.
   std::string cmsCvTechniques;

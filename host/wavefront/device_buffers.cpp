@@ -9,7 +9,7 @@
 namespace mixtrace {
 namespace {
 
-enum class Extent { ONE, PER_PATH, TWO_PER_PATH, SHADOW_SLOTS, PER_PIXEL, TWO_PER_PIXEL, CELL_SLOTS, CELL_STATS, CELL_SOLUTIONS,
+enum class Extent { ONE, PER_PATH, THREE_PER_PATH, SHADOW_SLOTS, PER_PIXEL, TWO_PER_PIXEL, CELL_SLOTS, CELL_STATS, CELL_SOLUTIONS,
                     PAIR_SLOTS, PAIR_STATS, PAIR_ALPHAS, PAIR_COUNTER_SLOTS, PAIR_OCCUPIED_SLOTS, CMS_PATHS, CMS_PIXELS, UPLOADED,
                     WINDOW_PIXELS, AOV_PIXELS };
 enum class Access { READ_ONLY, READ_WRITE, READ_BACK, TEXELS };
@@ -19,7 +19,7 @@ size_t elements(Extent extent, const BufferExtents& e) {
   switch (extent) {
     case Extent::ONE: return 1;
     case Extent::PER_PATH: return e.paths;
-    case Extent::TWO_PER_PATH: return 2 * size_t(e.paths);
+    case Extent::THREE_PER_PATH: return 3 * size_t(e.paths);
     case Extent::SHADOW_SLOTS: return (e.pairSlots > 1 ? 2 : 1) * size_t(e.paths);
     case Extent::PER_PIXEL: return pixels;
     case Extent::TWO_PER_PIXEL: return 2 * pixels;

@@ -16,6 +16,10 @@
 namespace mixtrace {
 namespace {
 
+// The least fraction of traced rays that must escape for intersect to go on queueing the hits for
+// shade (decideShadeQueue).
+constexpr double kShadeQueueMinEscaped = 0.15;
+
 // The method's clusters, where it samples lights through them (learned, cv, cms).
 const CmsScene* cmsOf(const RenderSettings& s, const MethodLights& lights) {
   return s.cms.clusters ? &lights.cms : nullptr;
@@ -73,6 +77,8 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   // The CMS rows the host uploads (placeholders of one element for the other methods, so every
   // binding is valid).
   const bool useCms = usesCms(s, cms);
+  queueForShade_ = !useCms && scene.lights.environmentLight < 0;
+  shadeQueueDecided_ = !queueForShade_;
   clusterCount_ = clustersOf(s, cms);
   const CellGridSetup grid = makeCellGrid(scene.scene.bounds, s.cells, clusterCount_);
   cellTableSize_ = useCms ? grid.tableSize : 1;
@@ -208,8 +214,10 @@ void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, 
     vertex.depth = depth;
     vertex.queueIn = (depth - 1) & 1u;
     prepare_->record(cmd, timer_, shared::PrepareConstants{shared::kPrepareRays, vertex.queueIn});
-    intersect_->record(cmd, timer_, shared::IntersectConstants{paths, vertex.queueIn});
+    intersect_->record(cmd, timer_, shared::IntersectConstants{paths, vertex.queueIn, queueForShade_ ? 1u : 0u});
     if (depth == 1 && aov_) aov_->record(cmd, timer_, shared::AovConstants{paths, pixelOffset, sampleIndex});
+    vertex.shadeQueued = queueForShade_ ? 1u : 0u;
+    if (queueForShade_) prepare_->record(cmd, timer_, shared::PrepareConstants{shared::kPrepareShade, vertex.queueIn});
     shade_->record(cmd, timer_, vertex, gathering);
     // The last depth only adds emission: no shadow rays; with the per-triangle control variate it
     // still queues the previous BSDF sample's pair terms for the shadow pass.
@@ -311,7 +319,21 @@ void WavefrontRenderer::renderSamples(uint32_t count) {
     timer_.collect();
     spp_ += n;
     count -= n;
+    if (!shadeQueueDecided_) decideShadeQueue();
   }
+}
+
+void WavefrontRenderer::decideShadeQueue() {
+  shadeQueueDecided_ = true;
+  shared::QueueState q{};
+  buffer(shared::BINDING_QUEUE_STATE).download(&q, sizeof(q));
+  const uint64_t traced = uint64_t(q.extensionRays[0]) | (uint64_t(q.extensionRays[1]) << 32);
+  const uint64_t hit = uint64_t(q.shadedRays[0]) | (uint64_t(q.shadedRays[1]) << 32);
+  // Queueing costs intersect about a tenth of its time (an atomic per SIMD group on a counter both
+  // of lavapipe's worker threads share, and a store per ray) and saves shade the share of rays that
+  // escaped, shade being a third to a half of a sample: below some 15 % escaped it loses
+  // (benchmarks/README.md, "What a pass costs on lavapipe").
+  if (traced == 0 || double(traced - std::min(hit, traced)) < kShadeQueueMinEscaped * double(traced)) queueForShade_ = false;
 }
 
 void WavefrontRenderer::restart(const shared::CameraGpu& camera) {
@@ -367,6 +389,7 @@ RenderCounters WavefrontRenderer::counters() const {
   c.extensionRays = uint64_t(q.extensionRays[0]) | (uint64_t(q.extensionRays[1]) << 32);
   c.shadowRays = uint64_t(q.shadowRays[0]) | (uint64_t(q.shadowRays[1]) << 32);
   c.schedule = fused_ ? "fused" : "wavefront";
+  if (!fused_) c.shadeQueue = queueForShade_ ? "hits" : "rays";
   if (solver_) {
     c.verticesWithoutCell = q.verticesWithoutCell;
     c.cellTableSize = cellTableSize_;

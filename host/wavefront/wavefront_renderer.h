@@ -99,6 +99,13 @@ class WavefrontRenderer : public Renderer {
   RenderSettings settings_;
   uint32_t lightCount_;
   bool lightBvh_ = false;   // the method picks lights by its light BVH (pt-bvh)
+  // Intersect queues the rays that hit something for the shade pass, which then never runs a SIMD
+  // group for rays that escaped (IntersectConstants.queueForShade). Only where escaped rays end
+  // their paths (no environment, no CMS terms to settle), and only while enough of them escape:
+  // the first submission measures it (decideShadeQueue).
+  bool queueForShade_ = false;
+  bool shadeQueueDecided_ = false;
+  void decideShadeQueue();
   LightSelection lightSelection_ = LightSelection::Power;   // the method's (VertexConstants)
   uint32_t pixelCount_;
   uint32_t pathCount_;

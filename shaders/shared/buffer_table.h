@@ -12,7 +12,7 @@
 // it (host/vulkan/layout_checks.cpp asserts that no two rows share one). Taken: 0-8 (scene),
 // 9-19 (path state, queues, film), 20-29 (CMS), 30 (the viewer's window), 31 (the method's light
 // selection), 32 (the method's light BVH), 33 (path state: the MIS normals), 34-47 (the pair table, its solve and tests), 48 (the
-// environment), 49 (the AOVs), 50 (second texture coordinates). Each pass's descriptor set
+// environment), 49 (the AOVs), 50 (second texture coordinates), 51-57 (tests). Each pass's descriptor set
 // holds only the rows its interface lists, so the per-stage limit on storage buffers (32 on
 // lavapipe) applies to one pass, not to the sum of all.
 //
@@ -24,7 +24,7 @@
 // time, which made its intersect and shadow passes 17-35 % and its shade pass 21-31 % faster, and
 // it loads a storage image's texels inline where it calls a function for each texelFetch of a
 // uniform texel buffer, 5-14 % more; benchmarks/README.md, "BVH layout").
-// extent (elements): ONE (a single struct), PER_PATH, TWO_PER_PATH (ping-pong halves), PER_PIXEL,
+// extent (elements): ONE (a single struct), PER_PATH, THREE_PER_PATH (the ray queues: two ping-pong thirds and the shade queue), PER_PIXEL,
 // TWO_PER_PIXEL, CELL_SLOTS / CELL_STATS / CELL_SOLUTIONS (the CMS cell table, x the per-cell
 // strides of shared/cms_layouts.h), CMS_PATHS / CMS_PIXELS (per path / pixel when the method
 // learns, else one: a placeholder), UPLOADED (the host uploads its contents; the size is theirs),

@@ -337,6 +337,12 @@ struct QueueState {
   // Records of this depth's shadow queue that trace no ray (kShadowRayHidden, kShadowRayBsdfPair:
   // the per-triangle control variate's terms), so that shadowRays counts rays only.
   uint untracedShadows;
+  // The rays intersect queued for the shade pass (the ray queue's third kShadeQueue: those that hit something, where the
+  // renderer has it queue them: IntersectConstants.queueForShade), the shade pass's indirect
+  // dispatch arguments for them, and their count so far, 64-bit (low, high): counted by prepare.comp.
+  uint shadeCount;
+  DispatchArgs shadeArgs;
+  uint shadedRays[2];
 };
 
 // A light of a cluster, in the cluster-grouped list: cdf is inclusive inside its cluster.
@@ -346,6 +352,9 @@ struct ClusterLightGpu {
 };
 
 const uint kWorkgroupSize = 64u;
+// The third of the ray queue (RAY_QUEUE, shared/path_state.h) that holds the shade queue; 0 and 1
+// are the extension rays' ping-pong halves.
+const uint kShadeQueue = 2u;
 
 SHARED_END
 #endif

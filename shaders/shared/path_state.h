@@ -18,9 +18,12 @@
 // emitter it hits depends on the vertex's point (rayOrigin) and normal.
 #define BUFFER_MIS_NORMAL(X) X(MIS_NORMAL, misNormal, 33, READ_WRITE, vec3, PER_PATH, "path state (MIS normals)")
 #define BUFFER_HITS(X) X(HITS, hits, 15, READ_WRITE, HitRecord, PER_PATH, "path state (hits)")
-// Queues: the extension rays' path indices in ping-pong halves of pathCount entries each, the
-// shadow rays, and the counters with the indirect dispatch arguments.
-#define BUFFER_RAY_QUEUE(X) X(RAY_QUEUE, rayQueue, 16, READ_WRITE, uint, TWO_PER_PATH, "ray queues")
+// Queues: the extension rays' path indices in ping-pong thirds of pathCount entries each, and in
+// the third (kShadeQueue) the shade queue: this depth's rays that hit something, compacted by
+// intersect where the renderer has it queue them (IntersectConstants.queueForShade: no
+// environment lights the others and no CMS terms wait for them, so their paths end unshaded);
+// the shadow rays; and the counters with the indirect dispatch arguments.
+#define BUFFER_RAY_QUEUE(X) X(RAY_QUEUE, rayQueue, 16, READ_WRITE, uint, THREE_PER_PATH, "ray queues")
 // One record per path and depth; two with the per-triangle control variate (a light sample and
 // the previous BSDF sample's pair terms: shaders/wavefront/shade_interface.h).
 #define BUFFER_SHADOW_QUEUE(X) X(SHADOW_QUEUE, shadowQueue, 17, READ_WRITE, ShadowRay, SHADOW_SLOTS, "shadow-ray queue")

@@ -13,8 +13,13 @@
 
 SHARED_BEGIN
 struct IntersectConstants {
-  uint pathCount;  // paths in this wavefront chunk: the size of each half of the ray queue
+  uint pathCount;  // paths in this wavefront chunk: the size of each third of the ray queue
   uint queueIn;    // which half (0/1) holds the rays
+  // 1: queue the rays that hit something for the shade pass (the ray queue's third kShadeQueue),
+  // which then never sees the others; 0: queue nothing (shade reads the rays of queueIn). Where
+  // most rays hit, queueing costs intersect more than it saves shade (wavefront_renderer.cpp
+  // decideShadeQueue).
+  uint queueForShade;
 };
 SHARED_END
 #endif

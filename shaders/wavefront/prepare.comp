@@ -26,7 +26,13 @@ void main() {
     queues.rayCount[1u - pc.queueIn] = 0u;
     queues.shadowCount = 0u;
     queues.untracedShadows = 0u;
+    queues.shadeCount = 0u;
     addToCounter(queues.extensionRays, n);
+  } else if (pc.queue == kPrepareShade) {
+    queues.shadeArgs.x = (queues.shadeCount + kWorkgroupSize - 1u) / kWorkgroupSize;
+    queues.shadeArgs.y = 1u;
+    queues.shadeArgs.z = 1u;
+    addToCounter(queues.shadedRays, queues.shadeCount);
   } else {
     uint n = queues.shadowCount;
     addToCounter(queues.shadowRays, n - min(queues.untracedShadows, n));

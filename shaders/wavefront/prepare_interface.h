@@ -11,6 +11,7 @@ SHARED_BEGIN
 // PrepareConstants.queue: which queue the next pass reads.
 const uint kPrepareRays = 0u;     // the extension rays, before intersect + shade
 const uint kPrepareShadows = 1u;  // the shadow rays, before shadow
+const uint kPrepareShade = 2u;    // the rays intersect queued for shade, before shade (where it queues them)
 
 struct PrepareConstants {
   uint queue;    // kPrepareRays or kPrepareShadows

@@ -258,8 +258,8 @@ void sampleBsdf(Vertex v, INOUT(uint) rng) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= queues.rayCount[pc.queueIn]) return;
-  uint path = rayQueue[pc.queueIn * pc.pathCount + i];
+  if (i >= (pc.shadeQueued != 0u ? queues.shadeCount : queues.rayCount[pc.queueIn])) return;
+  uint path = rayQueue[(pc.shadeQueued != 0u ? kShadeQueue : pc.queueIn) * pc.pathCount + i];
   HitRecord hit = hits[path];
   vec3 dir = rayDirection[path];
   vec3 beta = throughput[path];

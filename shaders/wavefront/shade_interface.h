@@ -27,7 +27,7 @@
 
 SHARED_BEGIN
 struct VertexConstants {
-  uint pathCount;         // paths in this wavefront chunk: the size of each half of the ray queue
+  uint pathCount;         // paths in this wavefront chunk: the size of each third of the ray queue
   uint pixelOffset;       // first pixel of the chunk
   uint depth;             // 1 = the camera ray's vertex
   uint maxDepth;          // Mitsuba convention: 1 = emitters seen directly
@@ -40,6 +40,7 @@ struct VertexConstants {
   uint gatherStatistics;  // CMS: 1 when a later solve reads this sample pass's statistics
   uint pairCapacity;      // per-triangle CV: slots of the (cell, technique) pair table (a power of two)
   uint emitterCount;      // per-triangle CV: technique sources of punctual lights start here
+  uint shadeQueued;       // shade: 1 reads the rays intersect queued for it (the ray queue's third kShadeQueue), 0 the rays of queueIn
 };
 SHARED_END
 #endif

@@ -16,7 +16,8 @@ ShadePass::ShadePass(VulkanContext& ctx, const std::vector<uint32_t>& specializa
 
 void ShadePass::record(VkCommandBuffer cmd, PassTimer& timer, const shared::VertexConstants& constants,
                        bool gathering) const {
-  pass_.recordIndirect(cmd, timer, constants, queues_, offsetof(shared::QueueState, rayArgs),
+  pass_.recordIndirect(cmd, timer, constants, queues_,
+                       constants.shadeQueued ? offsetof(shared::QueueState, shadeArgs) : offsetof(shared::QueueState, rayArgs),
                        gathering ? "shade+statistics" : nullptr);
 }
 

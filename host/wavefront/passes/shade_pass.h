@@ -1,7 +1,8 @@
 #pragma once
 // Emission, one light sample and one BSDF sample at every queued hit, and with controlled mixture
 // sampling its cell, selection, control variate and statistics (shaders/wavefront/shade.comp),
-// sized by the ray queue's counter. Binds what wavefront/shade_interface.h lists, from the
+// sized by the counter of the queue it reads (constants.shadeQueued: the rays intersect queued for
+// it, or the ray queue). Binds what wavefront/shade_interface.h lists, from the
 // renderer's buffers.
 #include <vulkan/vulkan.h>
 
