@@ -20,6 +20,9 @@ namespace {
 // shade (decideShadeQueue).
 constexpr double kShadeQueueMinEscaped = 0.15;
 
+// A 64-bit counter of QueueState, kept by the GPU as (low, high).
+uint64_t counterValue(const uint32_t (&c)[2]) { return uint64_t(c[0]) | (uint64_t(c[1]) << 32); }
+
 // The method's clusters, where it samples lights through them (learned, cv, cms).
 const CmsScene* cmsOf(const RenderSettings& s, const MethodLights& lights) {
   return s.cms.clusters ? &lights.cms : nullptr;
@@ -327,8 +330,8 @@ void WavefrontRenderer::decideShadeQueue() {
   shadeQueueDecided_ = true;
   shared::QueueState q{};
   buffer(shared::BINDING_QUEUE_STATE).download(&q, sizeof(q));
-  const uint64_t traced = uint64_t(q.extensionRays[0]) | (uint64_t(q.extensionRays[1]) << 32);
-  const uint64_t hit = uint64_t(q.shadedRays[0]) | (uint64_t(q.shadedRays[1]) << 32);
+  const uint64_t traced = counterValue(q.extensionRays);
+  const uint64_t hit = counterValue(q.shadedRays);
   // Queueing costs intersect about a tenth of its time (an atomic per SIMD group on a counter both
   // of lavapipe's worker threads share, and a store per ray) and saves shade the share of rays that
   // escaped, shade being a third to a half of a sample: below some 15 % escaped it loses
@@ -386,8 +389,8 @@ RenderCounters WavefrontRenderer::counters() const {
   buffer(shared::BINDING_QUEUE_STATE).download(&q, sizeof(q));
   RenderCounters c;
   c.nonFiniteSamples = q.nonFinite;
-  c.extensionRays = uint64_t(q.extensionRays[0]) | (uint64_t(q.extensionRays[1]) << 32);
-  c.shadowRays = uint64_t(q.shadowRays[0]) | (uint64_t(q.shadowRays[1]) << 32);
+  c.extensionRays = counterValue(q.extensionRays);
+  c.shadowRays = counterValue(q.shadowRays);
   c.schedule = fused_ ? "fused" : "wavefront";
   if (!fused_) c.shadeQueue = queueForShade_ ? "hits" : "rays";
   if (solver_) {

@@ -337,9 +337,10 @@ struct QueueState {
   // Records of this depth's shadow queue that trace no ray (kShadowRayHidden, kShadowRayBsdfPair:
   // the per-triangle control variate's terms), so that shadowRays counts rays only.
   uint untracedShadows;
-  // The rays intersect queued for the shade pass (the ray queue's third kShadeQueue: those that hit something, where the
-  // renderer has it queue them: IntersectConstants.queueForShade), the shade pass's indirect
-  // dispatch arguments for them, and their count so far, 64-bit (low, high): counted by prepare.comp.
+  // The rays intersect queued for the shade pass (the ray queue's third kShadeQueue: those that
+  // hit something, where the renderer has it queue them: IntersectConstants.queueForShade), the
+  // shade pass's indirect dispatch arguments for them, and their count so far, 64-bit (low, high):
+  // counted by prepare.comp.
   uint shadeCount;
   DispatchArgs shadeArgs;
   uint shadedRays[2];

@@ -141,7 +141,6 @@ SHARED_FN vec3 emittedRadianceOf(uint tri, TriangleGeom g, float u, float v, vec
   return le;
 }
 
-
 // Solid-angle pdf with which sampleLightPoint() produces the point `lightPoint` on emitting
 // triangle `tri` as seen from `from`, given its light was chosen: triangle pmf / area, converted
 // by d^2 / |cos|. 0 for a triangle that does not emit.
@@ -243,7 +242,7 @@ SHARED_FN bool sampleLightPoint(vec3 p, uint light, float uEmitter, vec2 uPoint,
     if (!(s.distance > 0.0f)) return false;
     s.direction = d / s.distance;
     // Each load and the edge cross once: the same values as triangleGeometricNormal(g),
-    // triangleSolidAnglePdf(g, d), emitterPmf(e) and emittedRadiance(em.triangle, ...).
+    // triangleSolidAnglePdf(g, d), emitterPmf(e) and emittedRadianceOf(em.triangle, g, ...).
     float len1, len2;
     vec3 c = unitEdgeCross(g, len1, len2);
     s.normal = normalOfUnitEdgeCross(c);

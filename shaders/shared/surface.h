@@ -144,8 +144,8 @@ SHARED_FN BsdfParams surfaceBsdf(SurfaceHit h, SurfaceMaterial sm) {
   return p;
 }
 
-// Radiance the hit's surface emits back along the ray (emittedRadiance of lights.h, from what the
-// hit already read): one-sided (the front face, where the ray did not come from inside) unless the
+// Radiance the hit's surface emits back along the ray (what emittedRadianceOf of lights.h gives a light
+// sample there, from what the hit already read): one-sided (the front face, where the ray did not come from inside) unless the
 // material is double-sided.
 SHARED_FN vec3 surfaceEmission(SurfaceHit h, SurfaceMaterial sm) {
   if (h.fromInside && (sm.m.flags & kMaterialDoubleSided) == 0u) return vec3(0.0f);

@@ -14,7 +14,7 @@ const uint kPrepareShadows = 1u;  // the shadow rays, before shadow
 const uint kPrepareShade = 2u;    // the rays intersect queued for shade, before shade (where it queues them)
 
 struct PrepareConstants {
-  uint queue;    // kPrepareRays or kPrepareShadows
+  uint queue;    // kPrepareRays, kPrepareShade or kPrepareShadows
   uint queueIn;  // kPrepareRays: which ray queue (0/1) the next intersect and shade read
 };
 SHARED_END
