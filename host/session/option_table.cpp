@@ -293,8 +293,8 @@ std::vector<OptionRow> executionRows() {
     flag("--validation", kForRenderAndView, G::Execution, "enable the Vulkan validation layer (slow)",
          [](D& d, const V&) { d.render->validation = true; }),
     choice("--schedule", "auto|wavefront|fused", "schedule", {"auto", "wavefront", "fused"}, "auto", G::Execution,
-           "Vulkan: wavefront (a pass per stage and depth), fused (one dispatch traces whole paths; "
-           "pt-uniform, pt-power, pt-bvh without --aov), or auto (the one measured faster for the device: "
+           "Vulkan: wavefront (a pass per stage and depth), fused (one dispatch traces whole paths, "
+           "every method; not with --aov), or auto (the one measured faster for the device: "
            "wavefront, on lavapipe too)",
            [](D& d, const V& v) { d.render->schedule = v.text; }),
     flag("--general-pipelines", kForRenderAndView, G::Execution,

@@ -127,12 +127,6 @@ MethodView& Viewer::view(const std::string& method) {
   if (found != views_.end()) return *found->second;
   auto v = std::make_unique<MethodView>();
   v->setup = setUpMethod(prepared_, options_, method);
-  // Keys switch methods freely: one the fused schedule cannot run gets the wavefront, said once.
-  RenderSettings& s = v->setup.settings;
-  if (s.schedule == RenderSettings::Schedule::Fused && !fusedScheduleRuns(s, v->setup.lights)) {
-    s.schedule = RenderSettings::Schedule::Wavefront;
-    info(method + " runs on the wavefront schedule (--schedule fused traces pt-uniform, pt-power and pt-bvh)");
-  }
   v->renderer = std::make_unique<WavefrontRenderer>(ctx_, prepared_, v->setup.lights, v->setup.settings);
   v->display = std::make_unique<DisplayPass>(ctx_, *v->renderer);
   if (display_) v->display->bindWindow(*display_);

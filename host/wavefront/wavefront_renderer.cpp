@@ -57,10 +57,10 @@ BufferExtents extentsFor(const RenderSettings& s, const PreparedScene& scene, co
 
 }  // namespace
 
-bool fusedScheduleRuns(const RenderSettings& s, const MethodLights& lights) {
-  // The fused schedule keeps a path in registers: for the methods without learning (whose per-vertex
-  // statistics and deferred BSDF-sample terms live in the wavefront's path state) and without AOVs.
-  return !usesCms(s, cmsOf(s, lights)) && !s.aovs;
+bool fusedScheduleRuns(const RenderSettings& s) {
+  // The fused schedule keeps a path in registers, for every method (shared/path_tracer.h and
+  // shared/cms_path_tracer.h); the first-hit AOVs are the wavefront's aov pass.
+  return !s.aovs;
 }
 
 WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& scene, const MethodLights& lights,
@@ -151,15 +151,15 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   accumulate_ = std::make_unique<AccumulatePass>(ctx, spec, bindings_);
   if (s.aovs) aov_ = std::make_unique<AovPass>(ctx, spec, bindings_);
   using Schedule = RenderSettings::Schedule;
-  if (s.schedule == Schedule::Fused && !fusedScheduleRuns(s, lights))
-    throw Error("--schedule fused traces pt-uniform, pt-power and pt-bvh without --aov; use --schedule wavefront or auto");
+  if (s.schedule == Schedule::Fused && !fusedScheduleRuns(s))
+    throw Error("--schedule fused renders no --aov; use --schedule wavefront or auto");
   // Auto is the wavefront on every device type: on lavapipe (the CPU device measured; Mesa 22.3,
   // AVX2, 320x240 pt-power, side by side) the two schedules are even, the fused kernel 2-10 %
   // faster on four shipped scenes and 23 % slower on veach_mis (1.01x in the geometric mean;
   // benchmarks/README.md, "Speed"), and the default method (cms) needs the wavefront. Starting a
   // new path in a lane whose path ended (path regeneration) did not speed the fused kernel up: its
   // one loop runs every stage's code, masked, at every bounce.
-  if (s.schedule == Schedule::Fused) fused_ = std::make_unique<FusedPass>(ctx, spec, bindings_);
+  if (s.schedule == Schedule::Fused) fused_ = std::make_unique<FusedPass>(ctx, spec, bindings_, floatAtomicVariants);
 
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     buffer(shared::BINDING_QUEUE_STATE).fillZero(cmd);
@@ -194,9 +194,21 @@ WavefrontRenderer::~WavefrontRenderer() {
 void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths,
                                      bool gathering) {
   if (fused_) {
-    fused_->record(cmd, timer_,
-                   shared::FusedConstants{paths, pixelOffset, sampleIndex, settings_.seed, settings_.maxDepth,
-                                          lightCount_});
+    shared::FusedConstants fused{};
+    fused.pathCount = paths;
+    fused.pixelOffset = pixelOffset;
+    fused.sampleIndex = sampleIndex;
+    fused.seed = settings_.seed;
+    fused.maxDepth = settings_.maxDepth;
+    fused.lightCount = lightCount_;
+    fused.clusterCount = clusterCount_;
+    fused.cellTableSize = cellTableSize_;
+    fused.gridOrigin = gridOrigin_;
+    fused.gridInvCellSize = gridInvCellSize_;
+    fused.gatherStatistics = gathering ? 1u : 0u;
+    fused.pairCapacity = pairCapacity_;
+    fused.emitterCount = emitterCount_;
+    fused_->record(cmd, timer_, fused);
     accumulate_->record(cmd, timer_, shared::AccumulateConstants{paths, pixelOffset, sampleIndex});
     return;
   }

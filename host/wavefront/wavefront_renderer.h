@@ -40,9 +40,8 @@ struct SparseSolveSettings;
 
 class VulkanContext;
 
-// Whether --schedule fused can run this method (pt-uniform, pt-power, pt-bvh, or a learning
-// method that reduces to one; no AOVs).
-bool fusedScheduleRuns(const RenderSettings& settings, const MethodLights& lights);
+// Whether --schedule fused can run these settings: every method, without AOVs.
+bool fusedScheduleRuns(const RenderSettings& settings);
 
 class WavefrontRenderer : public Renderer {
  public:

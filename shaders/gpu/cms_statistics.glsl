@@ -27,6 +27,13 @@ float sampleWeight(vec3 beta, uint path, uint cell) {
   return CMS_RELATIVE_WEIGHT ? relativeSampleWeight(beta, pixelEstimate[pc.pixelOffset + path]) : 1.0;
 }
 
+// Counts a vertex in its cell while that gathers (docs/estimator.md §5: the cap above), or one
+// whose probe sequence in the cell table was full (kNoCell), which adds no statistics.
+void countCellVertex(uint cell) {
+  if (cell == kNoCell) atomicAdd(queues.verticesWithoutCell, 1u);
+  else if (gatheringStatistics(cell)) atomicAdd(cellSamples[cell], 1u);
+}
+
 #ifndef CMS_FLOAT_ATOMICS
 // Without float atomics (the plain shade and shadow modules: devices without
 // VK_EXT_shader_atomic_float, --float-atomics off, and the methods that gather no statistics): a

@@ -145,10 +145,7 @@ void enterCell(INOUT(Vertex) v) {
   grid.invCellSize = pc.gridInvCellSize;
   grid.tableSize = pc.cellTableSize;
   v.cell = findOrInsertCell(grid, v.sh.position, v.sh.geometricNormal, v.sh.material);
-  if (v.cell != kNoCell) {
-    if (gatheringStatistics(v.cell)) atomicAdd(cellSamples[v.cell], 1u);
-  }
-  else atomicAdd(queues.verticesWithoutCell, 1u);
+  countCellVertex(v.cell);
   if (pc.depth == 1u) firstCell[pc.pixelOffset + v.path] = v.cell;
   v.cv = CMS_CONTROL_VARIATE && cellSolutionValid(v.cell, L);
   if (v.cv) radiance[v.path] += controlVariateIntegral(v.beta, v.cell, L);

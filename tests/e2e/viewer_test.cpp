@@ -112,19 +112,25 @@ TEST(Viewer, ScriptedSessionUnderXvfb) {
   EXPECT_GT(meta.ints["spp"], 0);
 }
 
-// Keys switch methods freely: under --schedule fused a learning method gets the wavefront, said
-// once, instead of ending the session.
-TEST(Viewer, FusedScheduleGivesLearningMethodsTheWavefront) {
+// Under --schedule fused the learning methods fuse too (shared/cms_path_tracer.h): a key switches
+// to cms, which learns cells, and the cell view shows the cells of the first hits the fused kernel
+// recorded (it was the wavefront's shade pass alone that wrote them).
+TEST(Viewer, FusedScheduleRunsLearningMethodsWithTheirCellViews) {
   ASSERT_EQ(std::system("command -v xvfb-run > /dev/null"), 0) << "xvfb-run is missing (scripts/setup.sh installs xvfb)";
   const fs::path dir = scratchDir("viewer-fused");
-  writeFile(dir / "script.txt", "frames 2\nkey 5\nframes 2\nscreenshot " + (dir / "cms.png").string() + "\nquit\n");
+  writeFile(dir / "script.txt", "frames 2\nkey 5\nframes 2\nscreenshot " + (dir / "cms.png").string() +
+                                    "\nkey f3\nframes 1\nscreenshot " + (dir / "cells.png").string() + "\nquit\n");
   const std::string scene = std::string(MIXTRACE_SOURCE_DIR) + "/scenes/veach_mis.gltf";
-  RunResult r = runMixtrace("view " + scene + " --method pt-power --schedule fused --width 32 --height 24 --script " +
-                                (dir / "script.txt").string(),
+  RunResult r = runMixtrace("view " + scene + " --method pt-power --schedule fused --width 64 --height 48 --cells 16 "
+                                "--validation --script " + (dir / "script.txt").string(),
                             "xvfb-run -a -s '-screen 0 1024x768x24'", 300);
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
-  EXPECT_NE(r.stderrText.find("cms runs on the wavefront schedule"), std::string::npos) << r.stderrText;
-  EXPECT_GT(load((dir / "cms.png").string()).mean(), 8.0) << "the image is black";
+  EXPECT_NE(r.stderrText.find("view: 0 validation errors"), std::string::npos) << r.stderrText;
+  EXPECT_EQ(r.stderrText.find("wavefront"), std::string::npos) << r.stderrText;
+  const Shot cms = load((dir / "cms.png").string()), cells = load((dir / "cells.png").string());
+  EXPECT_GT(cms.mean(), 8.0) << "the image is black";
+  EXPECT_GT(cells.distinctColours(), 20u) << "the cell view shows few cells";
+  EXPECT_GT(cells.difference(cms), 10.0);
 }
 
 TEST(Viewer, WithoutADisplayItFailsWithOneLine) {
