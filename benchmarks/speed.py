@@ -7,7 +7,8 @@ idle machine and with a competing CPU-bound process on every core (how throughpu
                                 [--scenes a.gltf,b.glb] [--seconds 3] [--repeat 3] [--no-load]
 
 - mixtrace: `mixtrace render SCENE --method pt-power --width 320 --height 240 --max-depth 5 --spp N`
-  with `--backend vulkan --schedule wavefront`, `--backend vulkan --schedule fused` and
+  with `--backend vulkan --schedule auto` (the default: on a CPU device the wavefront for the first
+  submission, then the schedule its ray count picks), `--schedule wavefront`, `--schedule fused` and
   `--backend cpu`; samples/s is the stats JSON's `samples_per_second` (render time, set-up excluded).
 - Mitsuba 3 (llvm_ad_rgb; scalar_rgb if that cannot run here, which the report then says): the same
   scene built from the glTF by bench/speed_mitsuba.py (same triangles, `principled` materials from
@@ -44,10 +45,11 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WORKER = os.path.join(ROOT, "benchmarks", "bench", "speed_mitsuba.py")
-RENDERERS = ["vulkan-wavefront", "vulkan-fused", "cpu", "mitsuba"]
-LABELS = {"vulkan-wavefront": "Vulkan wavefront", "vulkan-fused": "Vulkan fused", "cpu": "CPU backend",
-          "mitsuba": "Mitsuba 3"}
-MIXTRACE_ARGS = {"vulkan-wavefront": ["--backend", "vulkan", "--schedule", "wavefront"],
+RENDERERS = ["vulkan-auto", "vulkan-wavefront", "vulkan-fused", "cpu", "mitsuba"]
+LABELS = {"vulkan-auto": "Vulkan auto", "vulkan-wavefront": "Vulkan wavefront", "vulkan-fused": "Vulkan fused",
+          "cpu": "CPU backend", "mitsuba": "Mitsuba 3"}
+MIXTRACE_ARGS = {"vulkan-auto": ["--backend", "vulkan", "--schedule", "auto"],
+                 "vulkan-wavefront": ["--backend", "vulkan", "--schedule", "wavefront"],
                  "vulkan-fused": ["--backend", "vulkan", "--schedule", "fused"],
                  "cpu": ["--backend", "cpu"]}
 
@@ -236,14 +238,17 @@ def spread(runs):
 
 def condition_table(res, cond):
     lines = ["| scene | " + " | ".join(LABELS[r] for r in RENDERERS) +
-             " | Vulkan (best schedule) / CPU | Vulkan (best schedule) / Mitsuba | CPU / Mitsuba |",
-             "|---|" + "---|" * (len(RENDERERS) + 3)]
+             " | Vulkan auto / CPU | Vulkan (best schedule) / CPU | Vulkan auto / Mitsuba | "
+             "Vulkan (best schedule) / Mitsuba | CPU / Mitsuba |",
+             "|---|" + "---|" * (len(RENDERERS) + 5)]
     for scene, per in res["measurements"][cond].items():
         b = {r: best(per[r]) for r in RENDERERS}
         vk = max(b["vulkan-wavefront"] or 0, b["vulkan-fused"] or 0) or None
         which = "wf" if (b["vulkan-wavefront"] or 0) >= (b["vulkan-fused"] or 0) else "fused"
+        chose = {"wavefront": "wf", "fused": "fused"}.get(next((m.get("schedule") for m in per["vulkan-auto"]), None), "?")
         lines.append(f"| {scene} | " + " | ".join(fmt_rate(b[r]) for r in RENDERERS) +
-                     f" | {fmt_ratio(vk, b['cpu'])} ({which}) | {fmt_ratio(vk, b['mitsuba'])} | "
+                     f" | {fmt_ratio(b['vulkan-auto'], b['cpu'])} ({chose}) | {fmt_ratio(vk, b['cpu'])} ({which}) | "
+                     f"{fmt_ratio(b['vulkan-auto'], b['mitsuba'])} | {fmt_ratio(vk, b['mitsuba'])} | "
                      f"{fmt_ratio(b['cpu'], b['mitsuba'])} |")
     return lines
 

@@ -114,6 +114,7 @@ RenderStats collectStats(const RenderOptions& o, const PreparedScene& prepared, 
   stats.cmsAtomics = counters.statisticsAtomics;
   stats.schedule = counters.schedule;
   stats.shadeQueue = counters.shadeQueue;
+  stats.autoRayOccupancy = counters.autoRayOccupancy;
   stats.estimator = setup.estimator;
   stats.cmsGatheringSpp = counters.gatheringSamples;
   stats.cmsCvTechniques = counters.cvTechniques;

@@ -70,6 +70,8 @@ struct RenderCounters {
   std::string statisticsAtomics;      // CMS on Vulkan: "float" atomics or "cas" loops
   std::string schedule;               // Vulkan: "wavefront" or "fused" (what ran)
   std::string shadeQueue;             // Vulkan wavefront: "hits" (shade ran only the rays that hit something) or "rays"
+  double autoRayOccupancy = -1.0;     // Vulkan, --schedule auto on a CPU device: the extension rays the first
+                                      // submission traced per path and depth, which chose the schedule (-1: none)
   uint32_t gatheringSamples = 0;      // CMS: sample passes that gathered statistics
   // The control variate's techniques (RenderSettings::perTriangleCv): "triangle" or "cluster"
   // (empty: the method has no control variate), and with "triangle" the pair table's use.

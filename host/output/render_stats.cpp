@@ -43,6 +43,7 @@ void writeStatsJson(const std::string& path, const RenderStats& s) {
   j["non_finite_samples"] = s.nonFiniteSamples;
   if (!s.schedule.empty()) j["schedule"] = s.schedule;
   if (!s.shadeQueue.empty()) j["shade_queue"] = s.shadeQueue;
+  if (s.autoRayOccupancy >= 0.0) j["schedule_ray_occupancy"] = s.autoRayOccupancy;
   if (s.cmsCellTableSize > 0) {
     j["cms_clusters"] = s.cmsClusters;
     j["cms_gathering_spp"] = s.cmsGatheringSpp;

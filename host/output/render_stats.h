@@ -27,6 +27,7 @@ struct RenderStats {
   std::string cmsAtomics;   // how the statistics are added: "float" or "cas" (Vulkan)
   std::string schedule;     // Vulkan: "wavefront" or "fused"
   std::string shadeQueue;   // Vulkan wavefront: "hits" or "rays" (RenderCounters::shadeQueue)
+  double autoRayOccupancy = -1.0;   // RenderCounters::autoRayOccupancy (-1: not chosen by it)
   // The control variate's techniques (cv, cms): "triangle" or "cluster", how many, whether
   // triangles were merged to fit the budget, and with "triangle" the (cell, technique) pair table.
   std::string cmsCvTechniques;

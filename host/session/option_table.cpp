@@ -294,8 +294,8 @@ std::vector<OptionRow> executionRows() {
          [](D& d, const V&) { d.render->validation = true; }),
     choice("--schedule", "auto|wavefront|fused", "schedule", {"auto", "wavefront", "fused"}, "auto", G::Execution,
            "Vulkan: wavefront (a pass per stage and depth), fused (one dispatch traces whole paths, "
-           "every method; not with --aov), or auto (the one measured faster for the device: "
-           "wavefront, on lavapipe too)",
+           "every method; not with --aov), or auto (GPUs: wavefront; CPU devices: the wavefront's "
+           "first submission counts the rays per path, then fused where paths run deep)",
            [](D& d, const V& v) { d.render->schedule = v.text; }),
     flag("--general-pipelines", kForRenderAndView, G::Execution,
          "do not specialise the GPU pipelines on the scene's features (testing aid; same image)",

@@ -20,6 +20,15 @@ namespace {
 // shade (decideShadeQueue).
 constexpr double kShadeQueueMinEscaped = 0.15;
 
+// --schedule auto on a CPU device: the fused schedule once the first submission (the wavefront's)
+// traced at least this share of the extension rays its paths could have (one per path and depth).
+// The fused kernel runs every bounce's code for all its lanes until the group's last path ends, so
+// it wins where paths run to the maximum depth and loses where many end early: on lavapipe, for
+// pt-power and cms, fused was faster on indirect_rgb (0.91 of the rays), many_lights (0.89) and
+// punctual (0.86) and even or slower on cornell_box (0.57), veach_mis (0.54) and textured (0.45)
+// (decideSchedule; benchmarks/README.md, "Speed").
+constexpr double kFusedMinRayOccupancy = 0.75;
+
 // A 64-bit counter of QueueState, kept by the GPU as (low, high).
 uint64_t counterValue(const uint32_t (&c)[2]) { return uint64_t(c[0]) | (uint64_t(c[1]) << 32); }
 
@@ -153,13 +162,15 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   using Schedule = RenderSettings::Schedule;
   if (s.schedule == Schedule::Fused && !fusedScheduleRuns(s))
     throw Error("--schedule fused renders no --aov; use --schedule wavefront or auto");
-  // Auto is the wavefront on every device type: on lavapipe (the CPU device measured; Mesa 22.3,
-  // AVX2, 320x240 pt-power, side by side) the two schedules are even, the fused kernel 2-10 %
-  // faster on four shipped scenes and 23 % slower on veach_mis (1.01x in the geometric mean;
-  // benchmarks/README.md, "Speed"), and the default method (cms) needs the wavefront. Starting a
-  // new path in a lane whose path ended (path regeneration) did not speed the fused kernel up: its
-  // one loop runs every stage's code, masked, at every bounce.
-  if (s.schedule == Schedule::Fused) fused_ = std::make_unique<FusedPass>(ctx, spec, bindings_, floatAtomicVariants);
+  // Auto is the wavefront on GPUs. On a CPU device, where every dispatch of the wavefront ends in a
+  // thread-pool barrier and a SIMD group runs all its lanes' code, the first submission runs the
+  // wavefront and measures how many rays the paths trace (decideSchedule).
+  autoSchedule_ = s.schedule == Schedule::Auto && fusedScheduleRuns(s) &&
+                  ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  useFused_ = s.schedule == Schedule::Fused;
+  // (Starting a new path in a lane whose path ended, path regeneration, did not speed the fused
+  // kernel up: its one loop runs every stage's code, masked, at every bounce.)
+  if (useFused_ || autoSchedule_) fused_ = std::make_unique<FusedPass>(ctx, spec, bindings_, floatAtomicVariants);
 
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     buffer(shared::BINDING_QUEUE_STATE).fillZero(cmd);
@@ -193,7 +204,7 @@ WavefrontRenderer::~WavefrontRenderer() {
 
 void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths,
                                      bool gathering) {
-  if (fused_) {
+  if (useFused_) {
     shared::FusedConstants fused{};
     fused.pathCount = paths;
     fused.pixelOffset = pixelOffset;
@@ -335,7 +346,16 @@ void WavefrontRenderer::renderSamples(uint32_t count) {
     spp_ += n;
     count -= n;
     if (!shadeQueueDecided_) decideShadeQueue();
+    if (autoSchedule_ && rayOccupancy_ < 0.0) decideSchedule();
   }
+}
+
+void WavefrontRenderer::decideSchedule() {
+  shared::QueueState q{};
+  buffer(shared::BINDING_QUEUE_STATE).download(&q, sizeof(q));
+  const double possible = double(spp_) * double(pixelCount_) * double(settings_.maxDepth);
+  rayOccupancy_ = possible > 0.0 ? double(counterValue(q.extensionRays)) / possible : 0.0;
+  useFused_ = rayOccupancy_ >= kFusedMinRayOccupancy;
 }
 
 void WavefrontRenderer::decideShadeQueue() {
@@ -403,8 +423,9 @@ RenderCounters WavefrontRenderer::counters() const {
   c.nonFiniteSamples = q.nonFinite;
   c.extensionRays = counterValue(q.extensionRays);
   c.shadowRays = counterValue(q.shadowRays);
-  c.schedule = fused_ ? "fused" : "wavefront";
-  if (!fused_) c.shadeQueue = queueForShade_ ? "hits" : "rays";
+  c.schedule = useFused_ ? "fused" : "wavefront";
+  if (!useFused_) c.shadeQueue = queueForShade_ ? "hits" : "rays";
+  if (autoSchedule_) c.autoRayOccupancy = rayOccupancy_;
   if (solver_) {
     c.verticesWithoutCell = q.verticesWithoutCell;
     c.cellTableSize = cellTableSize_;

@@ -105,6 +105,13 @@ class WavefrontRenderer : public Renderer {
   bool queueForShade_ = false;
   bool shadeQueueDecided_ = false;
   void decideShadeQueue();
+  // The fused schedule's pass records the sample passes (--schedule fused, or auto's choice); with
+  // auto on a CPU device the first submission runs the wavefront and measures the extension rays
+  // its paths traced per path and depth (decideSchedule; -1 until then).
+  bool useFused_ = false;
+  bool autoSchedule_ = false;
+  double rayOccupancy_ = -1.0;
+  void decideSchedule();
   LightSelection lightSelection_ = LightSelection::Power;   // the method's (VertexConstants)
   uint32_t pixelCount_;
   uint32_t pathCount_;
@@ -135,7 +142,7 @@ class WavefrontRenderer : public Renderer {
   std::unique_ptr<ShadowPass> shadow_;
   std::unique_ptr<AccumulatePass> accumulate_;
   std::unique_ptr<AovPass> aov_;   // only where the render writes AOVs
-  std::unique_ptr<FusedPass> fused_;   // the fused schedule (RenderSettings::Schedule); null: wavefront
+  std::unique_ptr<FusedPass> fused_;   // the fused schedule's pass (useFused_), built where it may run
   PassTimer timer_;
   // The most timestamps one sample pass (all chunks, and the solve after it) has recorded so far:
   // what the next one is assumed to need when a submission is filled (renderSamples).
