@@ -202,40 +202,35 @@ WavefrontRenderer::~WavefrontRenderer() {
   vkDestroyFence(ctx_.device(), fence_, nullptr);
 }
 
+template <class Constants>
+Constants WavefrontRenderer::vertexConstants(uint32_t paths, uint32_t pixelOffset, bool gathering) const {
+  Constants c{};
+  c.pathCount = paths;
+  c.pixelOffset = pixelOffset;
+  c.maxDepth = settings_.maxDepth;
+  c.lightCount = lightCount_;
+  c.clusterCount = clusterCount_;
+  c.cellTableSize = cellTableSize_;
+  c.gridOrigin = gridOrigin_;
+  c.gridInvCellSize = gridInvCellSize_;
+  c.gatherStatistics = gathering ? 1u : 0u;
+  c.pairCapacity = pairCapacity_;
+  c.emitterCount = emitterCount_;
+  return c;
+}
+
 void WavefrontRenderer::recordSample(VkCommandBuffer cmd, uint32_t sampleIndex, uint32_t pixelOffset, uint32_t paths,
                                      bool gathering) {
   if (useFused_) {
-    shared::FusedConstants fused{};
-    fused.pathCount = paths;
-    fused.pixelOffset = pixelOffset;
+    shared::FusedConstants fused = vertexConstants<shared::FusedConstants>(paths, pixelOffset, gathering);
     fused.sampleIndex = sampleIndex;
     fused.seed = settings_.seed;
-    fused.maxDepth = settings_.maxDepth;
-    fused.lightCount = lightCount_;
-    fused.clusterCount = clusterCount_;
-    fused.cellTableSize = cellTableSize_;
-    fused.gridOrigin = gridOrigin_;
-    fused.gridInvCellSize = gridInvCellSize_;
-    fused.gatherStatistics = gathering ? 1u : 0u;
-    fused.pairCapacity = pairCapacity_;
-    fused.emitterCount = emitterCount_;
     fused_->record(cmd, timer_, fused);
     accumulate_->record(cmd, timer_, shared::AccumulateConstants{paths, pixelOffset, sampleIndex});
     return;
   }
   generate_->record(cmd, timer_, shared::GenerateConstants{paths, pixelOffset, sampleIndex, settings_.seed});
-  shared::VertexConstants vertex{};
-  vertex.pathCount = paths;
-  vertex.pixelOffset = pixelOffset;
-  vertex.maxDepth = settings_.maxDepth;
-  vertex.lightCount = lightCount_;
-  vertex.clusterCount = clusterCount_;
-  vertex.cellTableSize = cellTableSize_;
-  vertex.gridOrigin = gridOrigin_;
-  vertex.gridInvCellSize = gridInvCellSize_;
-  vertex.gatherStatistics = gathering ? 1u : 0u;
-  vertex.pairCapacity = pairCapacity_;
-  vertex.emitterCount = emitterCount_;
+  shared::VertexConstants vertex = vertexConstants<shared::VertexConstants>(paths, pixelOffset, gathering);
   for (uint32_t depth = 1; depth <= settings_.maxDepth; ++depth) {
     vertex.depth = depth;
     vertex.queueIn = (depth - 1) & 1u;

@@ -112,6 +112,10 @@ class WavefrontRenderer : public Renderer {
   bool autoSchedule_ = false;
   double rayOccupancy_ = -1.0;
   void decideSchedule();
+  // The members the shade, shadow and fused passes' constants share, by name (gpu/cms_statistics.glsl
+  // reads them from either): VertexConstants or FusedConstants.
+  template <class Constants>
+  Constants vertexConstants(uint32_t paths, uint32_t pixelOffset, bool gathering) const;
   LightSelection lightSelection_ = LightSelection::Power;   // the method's (VertexConstants)
   uint32_t pixelCount_;
   uint32_t pathCount_;
