@@ -90,7 +90,6 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   // binding is valid).
   const bool useCms = usesCms(s, cms);
   queueForShade_ = !useCms && scene.lights.environmentLight < 0;
-  shadeQueueDecided_ = !queueForShade_;
   clusterCount_ = clustersOf(s, cms);
   const CellGridSetup grid = makeCellGrid(scene.scene.bounds, s.cells, clusterCount_);
   cellTableSize_ = useCms ? grid.tableSize : 1;
@@ -340,23 +339,26 @@ void WavefrontRenderer::renderSamples(uint32_t count) {
     timer_.collect();
     spp_ += n;
     count -= n;
-    if (!shadeQueueDecided_) decideShadeQueue();
-    if (autoSchedule_ && rayOccupancy_ < 0.0) decideSchedule();
+    if (!probed_) decideFromFirstSubmission();
   }
 }
 
-void WavefrontRenderer::decideSchedule() {
+void WavefrontRenderer::decideFromFirstSubmission() {
+  probed_ = true;
+  if (!queueForShade_ && !autoSchedule_) return;
   shared::QueueState q{};
   buffer(shared::BINDING_QUEUE_STATE).download(&q, sizeof(q));
+  if (queueForShade_) decideShadeQueue(q);
+  if (autoSchedule_) decideSchedule(q);
+}
+
+void WavefrontRenderer::decideSchedule(const shared::QueueState& q) {
   const double possible = double(spp_) * double(pixelCount_) * double(settings_.maxDepth);
   rayOccupancy_ = possible > 0.0 ? double(counterValue(q.extensionRays)) / possible : 0.0;
   useFused_ = rayOccupancy_ >= kFusedMinRayOccupancy;
 }
 
-void WavefrontRenderer::decideShadeQueue() {
-  shadeQueueDecided_ = true;
-  shared::QueueState q{};
-  buffer(shared::BINDING_QUEUE_STATE).download(&q, sizeof(q));
+void WavefrontRenderer::decideShadeQueue(const shared::QueueState& q) {
   const uint64_t traced = counterValue(q.extensionRays);
   const uint64_t hit = counterValue(q.shadedRays);
   // Queueing costs intersect about a tenth of its time (an atomic per SIMD group on a counter both

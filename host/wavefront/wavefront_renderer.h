@@ -103,15 +103,17 @@ class WavefrontRenderer : public Renderer {
   // their paths (no environment, no CMS terms to settle), and only while enough of them escape:
   // the first submission measures it (decideShadeQueue).
   bool queueForShade_ = false;
-  bool shadeQueueDecided_ = false;
-  void decideShadeQueue();
+  void decideShadeQueue(const shared::QueueState& q);
   // The fused schedule's pass records the sample passes (--schedule fused, or auto's choice); with
   // auto on a CPU device the first submission runs the wavefront and measures the extension rays
   // its paths traced per path and depth (decideSchedule; -1 until then).
   bool useFused_ = false;
   bool autoSchedule_ = false;
   double rayOccupancy_ = -1.0;
-  void decideSchedule();
+  void decideSchedule(const shared::QueueState& q);
+  // Both decisions read the counters of the first submission, in one read-back.
+  bool probed_ = false;
+  void decideFromFirstSubmission();
   // The members the shade, shadow and fused passes' constants share, by name (gpu/cms_statistics.glsl
   // reads them from either): VertexConstants or FusedConstants.
   template <class Constants>

@@ -21,10 +21,23 @@ bool gatheringStatistics(uint cell) {
 
 // The weight of a sample of `path`'s vertex with throughput `beta` in its cell (docs/estimator.md
 // §5): relative to the estimate of the path's pixel made at the start of this iteration
-// (shared/pixel_estimate.h), or 1 (--relative-weighting off); 0 while not gathering.
+// (shared/pixel_estimate.h), or 1 (--relative-weighting off); 0 while not gathering and for no
+// cell (kNoCell).
 float sampleWeight(vec3 beta, uint path, uint cell) {
-  if (!gatheringStatistics(cell)) return 0.0;
+  if (cell == kNoCell || !gatheringStatistics(cell)) return 0.0;
   return CMS_RELATIVE_WEIGHT ? relativeSampleWeight(beta, pixelEstimate[pc.pixelOffset + path]) : 1.0;
+}
+
+// The cell grid the renderer pushes (VertexConstants, FusedConstants).
+CellGrid pushedCellGrid() {
+  CellGrid g;
+  g.origin = pc.gridOrigin;
+  g.invCellSize = pc.gridInvCellSize;
+  g.tableSize = pc.cellTableSize;
+  g.pad0 = 0u;
+  g.pad1 = 0u;
+  g.pad2 = 0u;
+  return g;
 }
 
 // Counts a vertex in its cell while that gathers (docs/estimator.md §5: the cap above), or one

@@ -24,7 +24,7 @@
 #include "shared/bvh_traverse.h"
 #include "shared/camera.h"
 #include "shared/path_tracer.h"
-#define CMS_PATH_WEIGHT(cell, beta, pixel) ((cell) == kNoCell ? 0.0 : sampleWeight(beta, (pixel) - pc.pixelOffset, cell))
+#define CMS_PATH_WEIGHT(cell, beta, pixel) sampleWeight(beta, (pixel) - pc.pixelOffset, cell)
 #define CMS_PATH_COUNT_VERTEX(cell) countCellVertex(cell)
 #include "shared/cms_path_tracer.h"
 #include "shared/rng.h"
@@ -44,12 +44,7 @@ void addToCounter(uint which, uint n) {
 // The cell table and method of this render, for shared/cms_path_tracer.h.
 CmsPathSetup cmsPathSetup(uint pixel) {
   CmsPathSetup c;
-  c.grid.origin = pc.gridOrigin;
-  c.grid.invCellSize = pc.gridInvCellSize;
-  c.grid.tableSize = pc.cellTableSize;
-  c.grid.pad0 = 0u;
-  c.grid.pad1 = 0u;
-  c.grid.pad2 = 0u;
+  c.grid = pushedCellGrid();
   c.clusterCount = pc.clusterCount;
   c.controlVariate = CMS_CONTROL_VARIATE;
   c.pairTechniques = CMS_PAIR_TECHNIQUES;

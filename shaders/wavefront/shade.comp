@@ -85,7 +85,7 @@ float settlePreviousBsdfSample(uint path, HitRecord hit, SurfaceHit sh, vec3 le,
   float cj = bsdfHitClusterWeight(prevCell, L, j, hit.triangle, rayOrigin[path], misNormal[path]);
   float peff = bsdfSampleMixtureDensity(j, cj, pj, prevPdfB);
   bool cv = CMS_CONTROL_VARIATE && cellSolutionValid(prevCell, L);
-  float w = prevCell != kNoCell && passGathersStatistics() ? sampleWeight(cvState[path].throughput, path, prevCell) : 0.0;
+  float w = sampleWeight(cvState[path].throughput, path, prevCell);
   if (CMS_PAIR_TECHNIQUES && j != kNoCell && prevCell != kNoCell && (cv || w > 0.0)) {
     // Per technique: the hit triangle's technique (host/cpu/cpu_cms_path.cpp
     // settlePendingBsdfSample); its pair lives in the shadow pass's rows, so its control-variate
@@ -140,11 +140,7 @@ void addEmission(uint path, HitRecord hit, SurfaceHit sh, vec3 le, vec3 beta, fl
 // views at depth 1; a cell with a solution pays the control variate's integral at once (§3).
 void enterCell(INOUT(Vertex) v) {
   uint L = pc.clusterCount;
-  CellGrid grid;
-  grid.origin = pc.gridOrigin;
-  grid.invCellSize = pc.gridInvCellSize;
-  grid.tableSize = pc.cellTableSize;
-  v.cell = findOrInsertCell(grid, v.sh.position, v.sh.geometricNormal, v.sh.material);
+  v.cell = findOrInsertCell(pushedCellGrid(), v.sh.position, v.sh.geometricNormal, v.sh.material);
   countCellVertex(v.cell);
   if (pc.depth == 1u) firstCell[pc.pixelOffset + v.path] = v.cell;
   v.cv = CMS_CONTROL_VARIATE && cellSolutionValid(v.cell, L);
