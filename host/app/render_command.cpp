@@ -77,7 +77,7 @@ RenderRun renderUntilDone(const RenderOptions& o, Renderer& renderer, const Stop
     progress.update(loop.fraction(), std::to_string(spp) + (run.timed ? "" : "/" + std::to_string(run.targetSpp)) +
                                          " spp, " + formatRate(spp * pixels / loop.seconds()) + " samples/s");
   }
-  run.seconds = secondsSince(renderStart);
+  run.seconds = secondsSince(renderStart) - renderer.setupSecondsDuringRender();
   progress.finish();
   return run;
 }
@@ -166,7 +166,7 @@ int runRender(const RenderOptions& given) {
   const RenderCounters counters = renderer->counters();
   RenderStats stats = collectStats(o, prepared, setup, *renderer, run, counters);
   stats.interruptedBy = stoppedBy;
-  stats.setupSeconds = setupSeconds;
+  stats.setupSeconds = setupSeconds + renderer->setupSecondsDuringRender();
   stats.validationErrors = ctx ? ctx->validationErrors() : 0;
   if (counters.verticesWithoutCell > 0)
     warn("the CMS cell table (" + std::to_string(counters.cellTableSize) + " cells) was full for " +

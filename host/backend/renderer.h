@@ -21,8 +21,8 @@ struct RenderSettings {
   uint32_t seed = 0;
   bool generalPipelines = false;         // Vulkan: ignore the feature set (testing aid)
   // Vulkan: how sample passes are dispatched. Wavefront: a pass per stage and depth; fused: one
-  // dispatch that traces whole paths (methods without learning); auto: the one measured faster
-  // for the device (the wavefront, today, on lavapipe too: wavefront_renderer.cpp).
+  // dispatch that traces whole paths (every method; not with AOVs); auto: the wavefront on GPUs, and
+  // on a CPU device fused where the first submission's paths ran deep (wavefront_renderer.cpp).
   enum class Schedule { Auto, Wavefront, Fused } schedule = Schedule::Auto;
   uint32_t maxPathsPerChunk = 1u << 20;  // Vulkan: the wavefront's width; larger images go in chunks
   uint32_t threads = 0;                  // CPU: worker threads, 0 = one per core
@@ -122,6 +122,9 @@ class Renderer {
   // Time per pass in milliseconds (GPU timestamp queries; empty where there are no passes).
   virtual std::map<std::string, double> passTimesMs() const = 0;
   virtual std::string deviceName() const = 0;
+  // Set-up work done inside renderSamples, in seconds: a pipeline built only once the render chose
+  // it (the Vulkan renderer's fused kernel under --schedule auto). Counted as set-up, not render time.
+  virtual double setupSecondsDuringRender() const { return 0.0; }
 
   // How many samples per pixel the render will take in all (an estimate for a time-limited one),
   // so the learning methods solve only where an iteration follows and the last iteration gathers

@@ -1,6 +1,7 @@
 #include "wavefront/wavefront_renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 
@@ -153,9 +154,9 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   // optional capability (the methods without statistics need none); they add the statistics with
   // compare-and-swap loops.
   casAtomics_ = useCms && !(s.floatAtomics && ctx.floatAtomics());
-  const bool floatAtomicVariants = useCms && !casAtomics_;
-  shade_ = std::make_unique<ShadePass>(ctx, spec, bindings_, floatAtomicVariants);
-  shadow_ = std::make_unique<ShadowPass>(ctx, spec, bindings_, floatAtomicVariants);
+  floatAtomicVariants_ = useCms && !casAtomics_;
+  shade_ = std::make_unique<ShadePass>(ctx, spec, bindings_, floatAtomicVariants_);
+  shadow_ = std::make_unique<ShadowPass>(ctx, spec, bindings_, floatAtomicVariants_);
   accumulate_ = std::make_unique<AccumulatePass>(ctx, spec, bindings_);
   if (s.aovs) aov_ = std::make_unique<AovPass>(ctx, spec, bindings_);
   using Schedule = RenderSettings::Schedule;
@@ -169,7 +170,7 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   useFused_ = s.schedule == Schedule::Fused;
   // (Starting a new path in a lane whose path ended, path regeneration, did not speed the fused
   // kernel up: its one loop runs every stage's code, masked, at every bounce.)
-  if (useFused_ || autoSchedule_) fused_ = std::make_unique<FusedPass>(ctx, spec, bindings_, floatAtomicVariants);
+  if (useFused_) buildFusedPass();
 
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     buffer(shared::BINDING_QUEUE_STATE).fillZero(cmd);
@@ -356,6 +357,17 @@ void WavefrontRenderer::decideSchedule(const shared::QueueState& q) {
   const double possible = double(spp_) * double(pixelCount_) * double(settings_.maxDepth);
   rayOccupancy_ = possible > 0.0 ? double(counterValue(q.extensionRays)) / possible : 0.0;
   useFused_ = rayOccupancy_ >= kFusedMinRayOccupancy;
+  if (useFused_) buildFusedPass();
+}
+
+void WavefrontRenderer::buildFusedPass() {
+  // Built only once a render runs it: on lavapipe compiling the fused kernel takes longer than
+  // the rest of a small render's set-up (veach_mis, cms: 0.5-0.75 s).
+  if (fused_) return;
+  const auto start = std::chrono::steady_clock::now();
+  fused_ = std::make_unique<FusedPass>(ctx_, spec_, bindings_, floatAtomicVariants_);
+  // After the first submission it was built inside renderSamples: set-up the render's time counts.
+  if (probed_) fusedBuildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void WavefrontRenderer::decideShadeQueue(const shared::QueueState& q) {

@@ -58,6 +58,9 @@ class WavefrontRenderer : public Renderer {
   RenderCounters counters() const override;
   std::map<std::string, double> passTimesMs() const override { return timer_.totalsMs(); }
   std::string deviceName() const override;
+  double setupSecondsDuringRender() const override { return fusedBuildSeconds_; }
+  // Whether the fused kernel's pipeline exists: with --schedule auto only once the render chose it.
+  bool fusedPassBuilt() const { return fused_ != nullptr; }
 
   // CMS: the cells as they are now (for tests and debug views). Empty for the other methods.
   struct CmsCellState {
@@ -111,6 +114,8 @@ class WavefrontRenderer : public Renderer {
   bool autoSchedule_ = false;
   double rayOccupancy_ = -1.0;
   void decideSchedule(const shared::QueueState& q);
+  void buildFusedPass();   // fused_, once useFused_ (not at set-up for auto: it may keep the wavefront)
+  double fusedBuildSeconds_ = 0.0;   // what that took inside renderSamples (setupSecondsDuringRender)
   // Both decisions read the counters of the first submission, in one read-back.
   bool probed_ = false;
   void decideFromFirstSubmission();
@@ -127,6 +132,7 @@ class WavefrontRenderer : public Renderer {
   // Controlled mixture sampling: the cell grid. Its buffers are placeholders of one element when
   // the method does not use them (shared/cms_state.h).
   bool casAtomics_ = false;   // CMS statistics through compare-and-swap loops, not the *_float_atomics variants
+  bool floatAtomicVariants_ = false;   // the passes that add statistics use the *_float_atomics modules
   uint32_t clusterCount_ = 0, cellTableSize_ = 1;
   // The per-triangle control variate (shared/cms_pair_state.h): the pair table's capacity (1: the
   // placeholders of the other methods) and the techniques' counts for the stats JSON.
@@ -148,7 +154,7 @@ class WavefrontRenderer : public Renderer {
   std::unique_ptr<ShadowPass> shadow_;
   std::unique_ptr<AccumulatePass> accumulate_;
   std::unique_ptr<AovPass> aov_;   // only where the render writes AOVs
-  std::unique_ptr<FusedPass> fused_;   // the fused schedule's pass (useFused_), built where it may run
+  std::unique_ptr<FusedPass> fused_;   // the fused schedule's pass, built once useFused_ (buildFusedPass)
   PassTimer timer_;
   // The most timestamps one sample pass (all chunks, and the solve after it) has recorded so far:
   // what the next one is assumed to need when a submission is filled (renderSamples).
