@@ -106,6 +106,8 @@ static_assert(sizeof(shared::MaterialGpu) == shared::kTexelsPerMaterial * 16, "M
 static_assert(sizeof(shared::LightGpu) == shared::kTexelsPerLight * 16, "LightGpu: whole texels");
 static_assert(sizeof(shared::EmitterGpu) == shared::kTexelsPerEmitter * 16, "EmitterGpu: whole texels");
 static_assert(sizeof(shared::LightBvhNodeGpu) == shared::kTexelsPerLightBvhNode * 16, "LightBvhNodeGpu: whole texels");
+static_assert(sizeof(shared::LightSelectionGpu) == shared::kTexelsPerLightSelection * 16, "LightSelectionGpu: whole texels");
+static_assert(sizeof(shared::ClusterGpu) == shared::kTexelsPerCluster * 16, "ClusterGpu: whole texels");
 static_assert(isTexelBinding(shared::BINDING_BVH_NODES) && isTexelBinding(shared::BINDING_TRIANGLES) &&
                   !isTexelBinding(shared::BINDING_RAY_ORIGIN),
               "the BVH's rows are read as texels, the path state as storage buffers");

@@ -25,7 +25,8 @@ size_t elements(Extent extent, const BufferExtents& e) {
     case Extent::TWO_PER_PIXEL: return 2 * pixels;
     case Extent::CELL_SLOTS: return e.cellSlots;
     case Extent::CELL_STATS: return size_t(e.cellSlots) * shared::cellStatsStride(e.clusters);
-    case Extent::CELL_SOLUTIONS: return size_t(e.cellSlots) * shared::cellSolutionStride(e.clusters);
+    // Whole RGBA32UI texels: the shading passes read the solutions as texels too (shared/cms_state.h).
+    case Extent::CELL_SOLUTIONS: return (size_t(e.cellSlots) * shared::cellSolutionStride(e.clusters) + 3) / 4 * 4;
     case Extent::PAIR_SLOTS: return e.pairSlots;
     case Extent::PAIR_STATS: return size_t(e.pairSlots) * shared::kPairStatsStride;
     case Extent::PAIR_ALPHAS: return size_t(e.pairSlots) * shared::kPairAlphaStride;
@@ -74,6 +75,11 @@ const Buffer& DeviceBuffers::operator[](uint32_t binding) const {
 BufferBindings DeviceBuffers::bindings(const BufferBindings& others) const {
   BufferBindings all = others;
   for (const auto& [binding, buffer] : buffers_) all[binding] = &buffer;
+  // The views (shared/cms_state.h CMS_STATE_VIEWS, shared/cms_pair_state.h CMS_PAIR_VIEWS): the
+  // viewed row's buffer, bound as texels.
+  all[shared::BINDING_CELL_SOLUTION_TEXELS] = &(*this)[shared::BINDING_CELL_SOLUTION];
+  all[shared::BINDING_PAIR_ALPHA_TEXELS] = &(*this)[shared::BINDING_PAIR_ALPHA];
+  all[shared::BINDING_CLUSTER_DEFAULTS_TEXELS] = &(*this)[shared::BINDING_CLUSTER_DEFAULTS];
   return all;
 }
 

@@ -105,8 +105,10 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
   lightSelection_ = lights.kind == LightSelection::Bvh && !lightBvh_ ? LightSelection::Power : lights.kind;
   buffers_.add(shared::BINDING_LIGHT_BVH,
                makeBuffer(ctx, lightBvh_ ? lights.bvh : std::vector<shared::LightBvhNodeGpu>(1), "light BVH"));
-  buffers_.add(shared::BINDING_CLUSTER_DEFAULTS,
-               makeBuffer(ctx, useCms ? cms->clusters.defaultSelection : std::vector<float>{1.0f}, "cluster defaults"));
+  // Padded with zeros to whole texels: the shading passes read it as texels too (shared/cms_state.h).
+  std::vector<float> defaults = useCms ? cms->clusters.defaultSelection : std::vector<float>{1.0f};
+  defaults.resize((defaults.size() + 3) / 4 * 4, 0.0f);
+  buffers_.add(shared::BINDING_CLUSTER_DEFAULTS, makeBuffer(ctx, defaults, "cluster defaults"));
   buffers_.add(shared::BINDING_CLUSTERS,
                makeBuffer(ctx, useCms ? cms->clusters.clusters : std::vector<shared::ClusterGpu>(1), "clusters"));
   buffers_.add(shared::BINDING_CLUSTER_LIGHTS,
@@ -263,6 +265,7 @@ WavefrontRenderer::CmsCellState WavefrontRenderer::cmsCellState() const {
   s.samples = buffer(shared::BINDING_CELL_SAMPLES).downloadAll<uint32_t>();
   s.solution = buffer(shared::BINDING_CELL_SOLUTION).downloadAll<float>();
   s.defaults = buffer(shared::BINDING_CLUSTER_DEFAULTS).downloadAll<float>();
+  s.defaults.resize(clusterCount_);   // without the padding to whole texels
   s.params = solveParams();
   return s;
 }

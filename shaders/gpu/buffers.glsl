@@ -13,6 +13,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/bindings.h"
+#include "shared/cluster_layout.h"
 #include "shared/cms_layouts.h"
 #include "shared/layouts.h"
 
@@ -81,7 +82,8 @@ PASS_UNREAD_BUFFERS(DECLARE_BUFFER)
 #define ENV_DATA(i) environment[i]
 // How the method picks the scene's lights (shared/method_buffers.h); a light's cluster and its pmf
 // inside the cluster (docs/estimator.md §2) are read only through these.
-#define LIGHT_SELECT_PMF(i) lightSelection[i].pmf
-#define LIGHT_SELECT_CDF(i) lightSelection[i].cdf
-#define LIGHT_CLUSTER(light) lightSelection[light].cluster
-#define LIGHT_CLUSTER_PMF(light) lightSelection[light].clusterPmf
+// (A TEXELS row: one texel per light, gpu/texel_rows.glsl; each accessor loads the word it names.)
+#define LIGHT_SELECT_PMF(i) uintBitsToFloat(ROW_TEXEL(lightSelection, kTexelsPerLightSelection, i, 0u).x)
+#define LIGHT_SELECT_CDF(i) uintBitsToFloat(ROW_TEXEL(lightSelection, kTexelsPerLightSelection, i, 0u).y)
+#define LIGHT_CLUSTER(light) ROW_TEXEL(lightSelection, kTexelsPerLightSelection, light, 0u).z
+#define LIGHT_CLUSTER_PMF(light) uintBitsToFloat(ROW_TEXEL(lightSelection, kTexelsPerLightSelection, light, 0u).w)

@@ -150,3 +150,12 @@ LightBvhNodeGpu lightBvhNodeFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3) {
       ROW_TEXEL(lightBvh, kTexelsPerLightBvhNode, i, 1u), \
       ROW_TEXEL(lightBvh, kTexelsPerLightBvhNode, i, 2u), \
       ROW_TEXEL(lightBvh, kTexelsPerLightBvhNode, i, 3u))
+
+ClusterGpu clusterFromTexel(uvec4 t) {
+  ClusterGpu c;
+  c.firstLight = t.x;
+  c.lightCount = t.y;
+  c.kind = t.z;
+  c.power = uintBitsToFloat(t.w);
+  return c;
+}

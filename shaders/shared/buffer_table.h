@@ -12,7 +12,8 @@
 // it (host/vulkan/layout_checks.cpp asserts that no two rows share one). Taken: 0-8 (scene),
 // 9-19 (path state, queues, film), 20-29 (CMS), 30 (the viewer's window), 31 (the method's light
 // selection), 32 (the method's light BVH), 33 (path state: the MIS normals), 34-47 (the pair table, its solve and tests), 48 (the
-// environment), 49 (the AOVs), 50 (second texture coordinates), 51-57 (tests). Each pass's descriptor set
+// environment), 49 (the AOVs), 50 (second texture coordinates), 51-57 and 60-63, 65 (tests), 58-59 and 64
+// (the CMS texel views, shared/cms_state.h CMS_STATE_VIEWS). Each pass's descriptor set
 // holds only the rows its interface lists, so the per-stage limit on storage buffers (32 on
 // lavapipe) applies to one pass, not to the sum of all.
 //

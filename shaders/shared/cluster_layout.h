@@ -19,6 +19,7 @@ struct ClusterGpu {
   uint kind;           // kClusterArea or kClusterDelta
   float power;         // summed emitted power of its lights (luminance, W), as LightSet::power
 };
+const uint kTexelsPerCluster = 1u;
 
 SHARED_END
 #endif

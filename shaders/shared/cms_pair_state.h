@@ -56,9 +56,19 @@
 #define CMS_PAIR_BUFFERS(X) \
   BUFFER_PAIR_KEYS(X) BUFFER_PAIR_STATS(X) BUFFER_PAIR_SAMPLES(X) BUFFER_PAIR_ALPHA(X) BUFFER_TECHNIQUES(X) \
   BUFFER_PAIR_COUNTERS(X) BUFFER_PAIR_OCCUPIED(X)
+// The coefficients as the passes that only read them see them: a view (shared/cms_state.h,
+// CMS_STATE_VIEWS) of PAIR_ALPHA as texels, one texel per slot (kPairAlphaStride floats).
+#define BUFFER_PAIR_ALPHA_TEXELS(X) \
+  X(PAIR_ALPHA_TEXELS, pairAlphaTexels, 59, TEXELS, float, PAIR_ALPHAS, "CMS pair coefficients (texels)")
+#define CMS_PAIR_VIEWS(X) BUFFER_PAIR_ALPHA_TEXELS(X)
+// The pair rows of the passes that settle samples (shadow, fused): the coefficients as texels.
+#define CMS_PAIR_SETTLE_BUFFERS(X) \
+  BUFFER_PAIR_KEYS(X) BUFFER_PAIR_STATS(X) BUFFER_PAIR_SAMPLES(X) BUFFER_PAIR_ALPHA_TEXELS(X) BUFFER_TECHNIQUES(X) \
+  BUFFER_PAIR_COUNTERS(X) BUFFER_PAIR_OCCUPIED(X)
 
 SHARED_BEGIN
 CMS_PAIR_BUFFERS(BUFFER_BINDING_CONSTANT)
+CMS_PAIR_VIEWS(BUFFER_BINDING_CONSTANT)
 BUFFER_TECHNIQUE_CLUSTERS(BUFFER_BINDING_CONSTANT)
 
 // alpha_t of the pair in `slot`, RGB at kPairAlphaStride * slot + channel, then one more float:

@@ -39,9 +39,13 @@ SHARED_BEGIN_WITH_BUFFERS
 // (shared/cms_pair_terms.h settlePairSample).
 SHARED_FN bool remaindersMayExist(uint capacity) { return PAIR_OCCUPIED_COUNT() >= pairTriangleSlotLimit(capacity); }
 
-// The slot of (cell, technique) in a table of `capacity` slots (a power of two): found, or claimed
-// when the pair is new; kNoPairSlot when the probe sequence holds no free slot or cell is kNoCell.
-SHARED_FN uint findOrInsertPair(uint capacity, uint cell, uint technique) {
+// The slot of (cell, technique) in a table of `capacity` slots (a power of two), found, or with
+// `insert` claimed when the pair is new; kNoPairSlot when it is absent (without `insert`), when the
+// probe sequence holds no free slot, or when cell is kNoCell. One probe loop for both, so a SIMD
+// group whose invocations do different ones (some gather, some only read) runs one loop.
+// Without `insert`: a pair sits at the first slot of its probe sequence that was empty or its own
+// when it was inserted, and slots are never freed, so reaching an empty slot proves it absent.
+SHARED_FN uint probePair(uint capacity, uint cell, uint technique, bool insert) {
   if (cell == kNoCell) return kNoPairSlot;
   uint64_t key = pairKey(cell, technique);
   uint mask = capacity - 1u;
@@ -53,8 +57,7 @@ SHARED_FN uint findOrInsertPair(uint capacity, uint cell, uint technique) {
     if (seen == uint64_t(0)) {
       // The last quarter of the table is the remainder pairs', and they are claimed only once the
       // triangle pairs have reached it (pairTriangleSlotLimit, remaindersMayExist).
-      if (isRemainderTechnique(technique) != remaindersMayExist(capacity))
-        return kNoPairSlot;
+      if (!insert || isRemainderTechnique(technique) != remaindersMayExist(capacity)) return kNoPairSlot;
       // Another invocation may claim this slot between the load and the swap: then the swap
       // returns its key, which is ours (the same pair, raced) or another's (probe on).
       uint64_t previous = PAIR_KEY_CAS(slot, uint64_t(0), key);
@@ -69,24 +72,13 @@ SHARED_FN uint findOrInsertPair(uint capacity, uint cell, uint technique) {
   return kNoPairSlot;
 }
 
-// The slot of (cell, technique) when the pair is in the table, else kNoPairSlot; never inserts
-// (the solve pass, and vertices that only read coefficients). A pair sits at the first slot of its
-// probe sequence that was empty or its own when it was inserted, and slots are never freed, so
-// reaching an empty slot proves the pair absent.
-SHARED_FN uint findPair(uint capacity, uint cell, uint technique) {
-  if (cell == kNoCell) return kNoPairSlot;
-  uint64_t key = pairKey(cell, technique);
-  uint mask = capacity - 1u;
-  uint slot = hashPairKey(key) & mask;
-  uint probes = pairProbeBound(capacity);
-  for (uint i = 0u; i < probes; ++i) {
-    uint64_t seen = PAIR_KEY_LOAD(slot);
-    if (seen == key) return slot;
-    if (seen == uint64_t(0)) return kNoPairSlot;
-    slot = (slot + i + 1u) & mask;
-  }
-  return kNoPairSlot;
+// Found or claimed (the vertices that gather).
+SHARED_FN uint findOrInsertPair(uint capacity, uint cell, uint technique) {
+  return probePair(capacity, cell, technique, true);
 }
+
+// Found only, never inserted (the solve pass, and vertices that only read coefficients).
+SHARED_FN uint findPair(uint capacity, uint cell, uint technique) { return probePair(capacity, cell, technique, false); }
 
 SHARED_END_WITH_BUFFERS
 #endif

@@ -80,30 +80,28 @@ SHARED_FN vec3 settlePairSample(uint capacity, uint cell, uint L, uint k, uint s
   TechniqueRefGpu ref = TECHNIQUE(source);
   float pt = pk / ref.share;   // p_t = p_k / Q_t: the normalised density of the sample's technique
   bool gathers = w > CMS_STAT_REAL(0);
-  uint own = gathers ? findOrInsertPair(capacity, cell, ref.technique) : findPair(capacity, cell, ref.technique);
+  uint own = probePair(capacity, cell, ref.technique, gathers);
+  bool ownSolved = pairSolved(own);
+  // The remainder pair serves the control variate where the own pair was not solved (below the
+  // triangle pairs' limit none exists: the lookup is skipped, not its term) and the statistics
+  // where the table refused the own pair. One lookup for both, inserting for the second: a
+  // remainder claimed here has alpha_R = 0, the same term as none. (SIMD code runs every lookup
+  // site for every invocation, so the sites are as few as the logic allows.)
+  bool remainderForStatistics = gathers && own == kNoPairSlot;
+  bool remainderForTerm = cv && !ownSolved && remaindersMayExist(capacity);
+  uint remainder = kNoPairSlot;
+  if (remainderForTerm || remainderForStatistics)
+    remainder = probePair(capacity, cell, remainderTechnique(k), remainderForStatistics);
   vec3 term = vec3(0.0f);
-  if (cv) {
-    if (pairSolved(own)) {
-      term = pairControlVariateTerm(T, cell, L, own, pt, pB, peff);
-    } else {
-      // Below the triangle pairs' limit no remainder exists: the lookup is skipped, not its term.
-      uint remainder = remaindersMayExist(capacity) ? findPair(capacity, cell, remainderTechnique(k)) : kNoPairSlot;
-      term = pairControlVariateTerm(T, cell, L, remainder, pk, pB, peff);
-    }
-  }
+  if (cv) term = pairControlVariateTerm(T, cell, L, ownSolved ? own : remainder, ownSolved ? pt : pk, pB, peff);
   if (!gathers) return term;
-  if (own != kNoPairSlot) {
-    addPairStatistics(own, CMS_STAT_REAL(pt), CMS_STAT_REAL(pB), CMS_STAT_REAL(peff), f, w);
-    CMS_COUNT_PAIR(kPairCounterPairSamples);
-    return term;
-  }
-  uint remainder = findOrInsertPair(capacity, cell, remainderTechnique(k));
-  if (remainder == kNoPairSlot) {
-    CMS_COUNT_PAIR(kPairCounterRefusedSamples);
-    return term;
-  }
-  addPairStatistics(remainder, CMS_STAT_REAL(pk), CMS_STAT_REAL(pB), CMS_STAT_REAL(peff), f, w);
-  CMS_COUNT_PAIR(kPairCounterRemainderSamples);
+  // The statistics go to the own pair with p_t, else to the remainder with p_k, else nowhere but
+  // the cell's A_BB and b_B; each outcome is counted.
+  uint slot = own != kNoPairSlot ? own : remainder;
+  if (slot != kNoPairSlot)
+    addPairStatistics(slot, CMS_STAT_REAL(own != kNoPairSlot ? pt : pk), CMS_STAT_REAL(pB), CMS_STAT_REAL(peff), f, w);
+  CMS_COUNT_PAIR(own != kNoPairSlot ? kPairCounterPairSamples
+                                    : (remainder != kNoPairSlot ? kPairCounterRemainderSamples : kPairCounterRefusedSamples));
   return term;
 }
 

@@ -20,7 +20,7 @@
   X(CLUSTER_DEFAULTS, clusterDefaults, 23, READ_ONLY, float, UPLOADED, "cluster defaults")
 // Hashed cell keys, 0 = an empty slot (shared/cms_cells.h).
 #define BUFFER_CELL_KEYS(X) X(CELL_KEYS, cellKeys, 24, READ_WRITE, uint64_t, CELL_SLOTS, "CMS cell table")
-#define BUFFER_CLUSTERS(X) X(CLUSTERS, clusters, 25, READ_ONLY, ClusterGpu, UPLOADED, "clusters")
+#define BUFFER_CLUSTERS(X) X(CLUSTERS, clusters, 25, TEXELS, ClusterGpu, UPLOADED, "clusters")
 // The lights grouped by cluster, with their CDFs inside it.
 #define BUFFER_CLUSTER_LIGHTS(X) \
   X(CLUSTER_LIGHTS, clusterLights, 26, READ_ONLY, ClusterLightGpu, UPLOADED, "cluster lights")
@@ -37,7 +37,20 @@
   BUFFER_CELL_KEYS(X) BUFFER_CLUSTERS(X) BUFFER_CLUSTER_LIGHTS(X) BUFFER_CV_STATE(X) BUFFER_PIXEL_ESTIMATE(X) \
   BUFFER_FIRST_CELL(X)
 
+// Views: a row above read as RGBA32UI texels (access TEXELS, shared/buffer_table.h) by the passes
+// that only read it, the shade, shadow and fused passes, where the solve writes (or reads) it as a
+// storage buffer (lavapipe gathers texels with vector instructions but loads a storage buffer one lane at
+// a time). No buffer of their own: the renderer binds the viewed row's buffer at the view's
+// binding (host/wavefront/device_buffers.cpp), its extent padded to whole texels; float i is
+// component i % 4 of texel i / 4 (gpu/cms_buffers.glsl).
+#define BUFFER_CELL_SOLUTION_TEXELS(X) \
+  X(CELL_SOLUTION_TEXELS, cellSolutionTexels, 58, TEXELS, float, CELL_SOLUTIONS, "CMS cell solutions (texels)")
+#define BUFFER_CLUSTER_DEFAULTS_TEXELS(X) \
+  X(CLUSTER_DEFAULTS_TEXELS, clusterDefaultsTexels, 64, TEXELS, float, UPLOADED, "cluster defaults (texels)")
+#define CMS_STATE_VIEWS(X) BUFFER_CELL_SOLUTION_TEXELS(X) BUFFER_CLUSTER_DEFAULTS_TEXELS(X)
+
 SHARED_BEGIN
 CMS_STATE_BUFFERS(BUFFER_BINDING_CONSTANT)
+CMS_STATE_VIEWS(BUFFER_BINDING_CONSTANT)
 SHARED_END
 #endif

@@ -223,6 +223,7 @@ struct LightSelectionGpu {
   uint cluster;        // its CMS light cluster (its own index when the method has none)
   float clusterPmf;    // fixed probability of the light inside its cluster
 };
+const uint kTexelsPerLightSelection = 1u;
 
 // One entry of the light BVH (host/scene/light_bvh.h builds it, shared/light_bvh.h descends it):
 // node 0 is the header, node 1 + i is light i's entry (a leaf, or a directional light, which has

@@ -9,7 +9,7 @@
 // LightSelectionGpu per light: the selection pmf and CDF (uniform or by power), and for the
 // learning methods the light's cluster and its pmf inside it.
 #define BUFFER_LIGHT_SELECTION(X) \
-  X(LIGHT_SELECTION, lightSelection, 31, READ_ONLY, LightSelectionGpu, UPLOADED, "light selection")
+  X(LIGHT_SELECTION, lightSelection, 31, TEXELS, LightSelectionGpu, UPLOADED, "light selection")
 
 // LightBvhNodeGpu: the light BVH of method pt-bvh (scene/light_bvh.h); one placeholder node for the
 // other methods, so that the binding is valid.

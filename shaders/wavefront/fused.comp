@@ -13,6 +13,7 @@
 #define PASS_BUFFERS FUSED_BUFFERS
 #define PASS_PAIR_BUFFERS 1
 #define PASS_CONSTANTS FusedConstants
+#define PASS_READS_SOLUTION_VIEWS
 #include "gpu/cms_buffers.glsl"
 #include "gpu/buffers.glsl"
 #define LIGHT_BVH(i) LIGHT_BVH_FROM_TEXELS(i)

@@ -15,6 +15,7 @@
 #include "wavefront/shade_interface.h"
 #define PASS_BUFFERS SHADE_BUFFERS
 #define PASS_CONSTANTS VertexConstants
+#define PASS_READS_SOLUTION_VIEWS
 #include "gpu/cms_buffers.glsl"
 #include "gpu/buffers.glsl"
 // pt-bvh picks lights by the method's light BVH (shared/light_bvh.h, through shared/lights.h).

@@ -11,6 +11,7 @@
 #define PASS_UNREAD_BUFFERS SHADOW_UNREAD_BUFFERS
 #define PASS_PAIR_BUFFERS 1
 #define PASS_CONSTANTS VertexConstants
+#define PASS_READS_SOLUTION_VIEWS
 #include "gpu/cms_buffers.glsl"
 #include "gpu/buffers.glsl"
 #define EMITTERS_UNIFORM (LIGHT_SELECTION == kLightSelectUniform)
