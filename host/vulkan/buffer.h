@@ -9,7 +9,14 @@
 
 #include <vulkan/vulkan.h>
 
+#include "shared/buffer_table.h"
+
 namespace mixtrace {
+
+// `words` rounded up to whole RGBA32UI texels: the length of a buffer read through a word view.
+constexpr size_t wordsInWholeTexels(size_t words) {
+  return (words + shared::kWordsPerTexel - 1) / shared::kWordsPerTexel * shared::kWordsPerTexel;
+}
 
 class VulkanContext;
 

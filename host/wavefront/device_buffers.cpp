@@ -26,7 +26,7 @@ size_t elements(Extent extent, const BufferExtents& e) {
     case Extent::CELL_SLOTS: return e.cellSlots;
     case Extent::CELL_STATS: return size_t(e.cellSlots) * shared::cellStatsStride(e.clusters);
     // Whole RGBA32UI texels: the shading passes read the solutions as texels too (shared/cms_state.h).
-    case Extent::CELL_SOLUTIONS: return (size_t(e.cellSlots) * shared::cellSolutionStride(e.clusters) + 3) / 4 * 4;
+    case Extent::CELL_SOLUTIONS: return wordsInWholeTexels(size_t(e.cellSlots) * shared::cellSolutionStride(e.clusters));
     case Extent::PAIR_SLOTS: return e.pairSlots;
     case Extent::PAIR_STATS: return size_t(e.pairSlots) * shared::kPairStatsStride;
     case Extent::PAIR_ALPHAS: return size_t(e.pairSlots) * shared::kPairAlphaStride;
@@ -77,9 +77,10 @@ BufferBindings DeviceBuffers::bindings(const BufferBindings& others) const {
   for (const auto& [binding, buffer] : buffers_) all[binding] = &buffer;
   // The views (shared/cms_state.h CMS_STATE_VIEWS, shared/cms_pair_state.h CMS_PAIR_VIEWS): the
   // viewed row's buffer, bound as texels.
-  all[shared::BINDING_CELL_SOLUTION_TEXELS] = &(*this)[shared::BINDING_CELL_SOLUTION];
-  all[shared::BINDING_PAIR_ALPHA_TEXELS] = &(*this)[shared::BINDING_PAIR_ALPHA];
-  all[shared::BINDING_CLUSTER_DEFAULTS_TEXELS] = &(*this)[shared::BINDING_CLUSTER_DEFAULTS];
+#define BIND_VIEW(VIEW, VIEWED) all[shared::BINDING_##VIEW] = &(*this)[shared::BINDING_##VIEWED];
+  CMS_STATE_VIEWED(BIND_VIEW)
+  CMS_PAIR_VIEWED(BIND_VIEW)
+#undef BIND_VIEW
   return all;
 }
 

@@ -107,7 +107,7 @@ WavefrontRenderer::WavefrontRenderer(VulkanContext& ctx, const PreparedScene& sc
                makeBuffer(ctx, lightBvh_ ? lights.bvh : std::vector<shared::LightBvhNodeGpu>(1), "light BVH"));
   // Padded with zeros to whole texels: the shading passes read it as texels too (shared/cms_state.h).
   std::vector<float> defaults = useCms ? cms->clusters.defaultSelection : std::vector<float>{1.0f};
-  defaults.resize((defaults.size() + 3) / 4 * 4, 0.0f);
+  defaults.resize(wordsInWholeTexels(defaults.size()), 0.0f);
   buffers_.add(shared::BINDING_CLUSTER_DEFAULTS, makeBuffer(ctx, defaults, "cluster defaults"));
   buffers_.add(shared::BINDING_CLUSTERS,
                makeBuffer(ctx, useCms ? cms->clusters.clusters : std::vector<shared::ClusterGpu>(1), "clusters"));

@@ -22,12 +22,12 @@ layout(constant_id = SPEC_CMS_PAIR_TECHNIQUES) const bool CMS_PAIR_TECHNIQUES = 
 #define CLUSTER(i) clusterFromTexel(ROW_TEXEL(clusters, kTexelsPerCluster, i, 0u))
 #define CLUSTER_LIGHT(i) clusterLights[i]
 // The passes that only read the solutions, pair coefficients and default selection (shade, shadow,
-// fused) list their views as texels (shared/cms_state.h CMS_STATE_VIEWS) and define PASS_READS_SOLUTION_VIEWS: float
-// i is component i % 4 of texel i / 4.
+// fused) list their views as texels (shared/cms_state.h CMS_STATE_VIEWS) and define
+// PASS_READS_SOLUTION_VIEWS.
 #ifdef PASS_READS_SOLUTION_VIEWS
-#define CELL_SOLUTION(i) uintBitsToFloat(imageLoad(cellSolutionTexels, int((i) >> 2u))[(i) & 3u])
-#define PAIR_ALPHA(i) uintBitsToFloat(imageLoad(pairAlphaTexels, int((i) >> 2u))[(i) & 3u])
-#define CLUSTER_DEFAULT(k) uintBitsToFloat(imageLoad(clusterDefaultsTexels, int((k) >> 2u))[(k) & 3u])
+#define CELL_SOLUTION(i) ROW_WORD(cellSolutionTexels, i)
+#define PAIR_ALPHA(i) ROW_WORD(pairAlphaTexels, i)
+#define CLUSTER_DEFAULT(k) ROW_WORD(clusterDefaultsTexels, k)
 #else
 #define CELL_SOLUTION(i) cellSolution[i]
 #define PAIR_ALPHA(i) pairAlpha[i]

@@ -40,6 +40,13 @@
 #define BUFFER_IS_TEXELS_READ_BACK false
 #define BUFFER_IS_TEXELS_TEXELS true
 
+// 32-bit words per RGBA32UI texel. A word view (a row of Type float read as texels: word i is
+// component i % 4 of texel i / 4, ROW_WORD in gpu/texel_rows.glsl) needs its buffer padded to
+// whole texels (host/vulkan/buffer.h wordsInWholeTexels).
+SHARED_BEGIN
+const uint kWordsPerTexel = 4u;
+SHARED_END
+
 // X for a table: declares the row's binding number as BINDING_<ID>.
 #define BUFFER_BINDING_CONSTANT(ID, name, binding, access, Type, extent, label) const uint BINDING_##ID = uint(binding);
 

@@ -53,18 +53,19 @@
 // Binding 43 is the sparse solve's own scratch (per cell), binding 45 its dispatch arguments, both
 // owned by its pass.
 
-#define CMS_PAIR_BUFFERS(X) \
-  BUFFER_PAIR_KEYS(X) BUFFER_PAIR_STATS(X) BUFFER_PAIR_SAMPLES(X) BUFFER_PAIR_ALPHA(X) BUFFER_TECHNIQUES(X) \
-  BUFFER_PAIR_COUNTERS(X) BUFFER_PAIR_OCCUPIED(X)
+// Every pair row but the coefficients, which the settling passes read through their view.
+#define CMS_PAIR_TABLE_BUFFERS(X) \
+  BUFFER_PAIR_KEYS(X) BUFFER_PAIR_STATS(X) BUFFER_PAIR_SAMPLES(X) BUFFER_TECHNIQUES(X) BUFFER_PAIR_COUNTERS(X) \
+  BUFFER_PAIR_OCCUPIED(X)
+#define CMS_PAIR_BUFFERS(X) CMS_PAIR_TABLE_BUFFERS(X) BUFFER_PAIR_ALPHA(X)
 // The coefficients as the passes that only read them see them: a view (shared/cms_state.h,
 // CMS_STATE_VIEWS) of PAIR_ALPHA as texels, one texel per slot (kPairAlphaStride floats).
 #define BUFFER_PAIR_ALPHA_TEXELS(X) \
   X(PAIR_ALPHA_TEXELS, pairAlphaTexels, 59, TEXELS, float, PAIR_ALPHAS, "CMS pair coefficients (texels)")
 #define CMS_PAIR_VIEWS(X) BUFFER_PAIR_ALPHA_TEXELS(X)
+#define CMS_PAIR_VIEWED(V) V(PAIR_ALPHA_TEXELS, PAIR_ALPHA)
 // The pair rows of the passes that settle samples (shadow, fused): the coefficients as texels.
-#define CMS_PAIR_SETTLE_BUFFERS(X) \
-  BUFFER_PAIR_KEYS(X) BUFFER_PAIR_STATS(X) BUFFER_PAIR_SAMPLES(X) BUFFER_PAIR_ALPHA_TEXELS(X) BUFFER_TECHNIQUES(X) \
-  BUFFER_PAIR_COUNTERS(X) BUFFER_PAIR_OCCUPIED(X)
+#define CMS_PAIR_SETTLE_BUFFERS(X) CMS_PAIR_TABLE_BUFFERS(X) BUFFER_PAIR_ALPHA_TEXELS(X)
 
 SHARED_BEGIN
 CMS_PAIR_BUFFERS(BUFFER_BINDING_CONSTANT)

@@ -41,13 +41,15 @@
 // that only read it, the shade, shadow and fused passes, where the solve writes (or reads) it as a
 // storage buffer (lavapipe gathers texels with vector instructions but loads a storage buffer one lane at
 // a time). No buffer of their own: the renderer binds the viewed row's buffer at the view's
-// binding (host/wavefront/device_buffers.cpp), its extent padded to whole texels; float i is
-// component i % 4 of texel i / 4 (gpu/cms_buffers.glsl).
+// binding (host/wavefront/device_buffers.cpp, from CMS_STATE_VIEWED), its length padded to whole
+// texels; word views (shared/buffer_table.h kWordsPerTexel, gpu/cms_buffers.glsl).
 #define BUFFER_CELL_SOLUTION_TEXELS(X) \
   X(CELL_SOLUTION_TEXELS, cellSolutionTexels, 58, TEXELS, float, CELL_SOLUTIONS, "CMS cell solutions (texels)")
 #define BUFFER_CLUSTER_DEFAULTS_TEXELS(X) \
   X(CLUSTER_DEFAULTS_TEXELS, clusterDefaultsTexels, 64, TEXELS, float, UPLOADED, "cluster defaults (texels)")
 #define CMS_STATE_VIEWS(X) BUFFER_CELL_SOLUTION_TEXELS(X) BUFFER_CLUSTER_DEFAULTS_TEXELS(X)
+// Each view and the row whose buffer it views: V(view ID, viewed ID).
+#define CMS_STATE_VIEWED(V) V(CELL_SOLUTION_TEXELS, CELL_SOLUTION) V(CLUSTER_DEFAULTS_TEXELS, CLUSTER_DEFAULTS)
 
 SHARED_BEGIN
 CMS_STATE_BUFFERS(BUFFER_BINDING_CONSTANT)
