@@ -77,9 +77,9 @@ PASS_UNREAD_BUFFERS(DECLARE_BUFFER)
 #include "gpu/texel_rows.glsl"
 #define BVH_TRIANGLE(i) TRIANGLE(i)
 #define TRIANGLE_UV2(i) triangleUv2[i]
-#define TEXTURE(i) textureFromWords(textures[i])
-#define TEXEL(i) texels[i]
-#define ENV_DATA(i) environment[i]
+#define TEXTURE(i) textureFromWords(imageLoad(textures, int(i)))
+#define TEXEL(i) ROW_UINT(texels, i)
+#define ENV_DATA(i) ROW_WORD(environment, i)
 // How the method picks the scene's lights (shared/method_buffers.h); a light's cluster and its pmf
 // inside the cluster (docs/estimator.md §2) are read only through these.
 // (A TEXELS row: one texel per light, gpu/texel_rows.glsl; each accessor loads the word it names.)

@@ -4,8 +4,9 @@
 // accessor bit for bit). The accessors are macros, so a pass names only the rows it lists (the
 // image of a row it does not list is undeclared); the assembling functions name no row.
 #define ROW_TEXEL(row, texelsPerElement, i, k) imageLoad(row, int((texelsPerElement) * (i) + (k)))
-// Word i of a word view (shared/buffer_table.h kWordsPerTexel), as a float.
-#define ROW_WORD(row, i) uintBitsToFloat(imageLoad(row, int((i) / kWordsPerTexel))[(i) % kWordsPerTexel])
+// Word i of a word view (shared/buffer_table.h kWordsPerTexel), as a uint and as a float.
+#define ROW_UINT(row, i) imageLoad(row, int((i) / kWordsPerTexel))[(i) % kWordsPerTexel]
+#define ROW_WORD(row, i) uintBitsToFloat(ROW_UINT(row, i))
 
 BvhNode bvhNodeFromTexels(uvec4 t0, uvec4 t1, uvec4 t2, uvec4 t3) {
   BvhNode node;

@@ -13,14 +13,17 @@
 #define BUFFER_TRIANGLE_SHADING(X) \
   X(TRIANGLE_SHADING, triangleShading, 3, TEXELS, TriangleShading, UPLOADED, "triangle shading data")
 #define BUFFER_MATERIALS(X) X(MATERIALS, materials, 4, TEXELS, MaterialGpu, UPLOADED, "materials")
-// The texture table holds TextureGpu records as uvec4s, read with one load (textureFromWords).
-#define BUFFER_TEXTURES(X) X(TEXTURES, textures, 5, READ_ONLY, uvec4, UPLOADED, "texture table")
-#define BUFFER_TEXELS(X) X(TEXELS, texels, 6, READ_ONLY, uint, UPLOADED, "texels")
+// The texture table holds TextureGpu records as uvec4s, one texel each (textureFromWords); the
+// texels (RGBA8 words) are read through a word view, four to a texel (a buffer's size is whole
+// texels, host/vulkan/buffer.cpp): a bilinear lookup's four reads are gathers, not four lane loops.
+#define BUFFER_TEXTURES(X) X(TEXTURES, textures, 5, TEXELS, uvec4, UPLOADED, "texture table")
+#define BUFFER_TEXELS(X) X(TEXELS, texels, 6, TEXELS, uint, UPLOADED, "texels")
 #define BUFFER_LIGHTS(X) X(LIGHTS, lights, 7, TEXELS, LightGpu, UPLOADED, "lights")
 #define BUFFER_EMITTERS(X) X(EMITTERS, emitters, 8, TEXELS, EmitterGpu, UPLOADED, "emitters")
 // The environment light's map and distribution (shared/environment_layout.h); a header saying
-// "none" where the scene has none.
-#define BUFFER_ENVIRONMENT(X) X(ENVIRONMENT, environment, 48, READ_ONLY, float, UPLOADED, "environment map")
+// "none" where the scene has none. A word view like the texels (its lookups and the distribution's
+// searches read at divergent indices).
+#define BUFFER_ENVIRONMENT(X) X(ENVIRONMENT, environment, 48, TEXELS, float, UPLOADED, "environment map")
 // Second texture coordinates per triangle (layouts.h TriangleUvs); one unused entry where no
 // material reads them.
 #define BUFFER_TRIANGLE_UV2(X) X(TRIANGLE_UV2, triangleUv2, 50, READ_ONLY, TriangleUvs, UPLOADED, "second texture coordinates")

@@ -34,4 +34,8 @@ void main() {
   cellSolutionOut[i] = floatBitsToUint(CELL_SOLUTION(i));
   pairAlphaOut[i] = floatBitsToUint(PAIR_ALPHA(i));
   clusterDefaultsOut[i] = floatBitsToUint(CLUSTER_DEFAULT(i));
+  TextureGpu t = TEXTURE(i);
+  texturesOut[i] = uvec4(t.offset, t.width, t.height, t.sampling);
+  texelsOut[i] = TEXEL(i);
+  environmentOut[i] = floatBitsToUint(ENV_DATA(i));
 }

@@ -130,10 +130,11 @@ TEST(LayoutContract, GlslOffsetsAndStridesEqualCpp) {
   if (BUFFER_IS_TEXELS_##access) texelTypes.insert(#Type);
   EVERY_BUFFER_ROW(TEXEL_ROW_TYPE)
 #undef TEXEL_ROW_TYPE
-  // ("float": the word views of shared/cms_state.h CMS_STATE_VIEWS and CMS_PAIR_VIEWS.)
+  // ("float", "uint": word views, shared/cms_state.h CMS_STATE_VIEWS and CMS_PAIR_VIEWS, the
+  // environment and the texels; "uvec4": the texture table, one texel per record.)
   EXPECT_EQ(texelTypes, (std::set<std::string>{"BvhNode", "TriangleGeom", "TriangleShading", "MaterialGpu", "LightGpu",
                                                "EmitterGpu", "LightBvhNodeGpu", "LightSelectionGpu", "ClusterGpu",
-                                               "float"}));
+                                               "float", "uint", "uvec4"}));
   // Structs a row stores as plain words (the texture table: uvec4s, read by textureFromWords, whose
   // word order tests/unit/shared/texture_wrap_test.cpp checks against these offsets).
   const std::set<std::string> wordTypes = {"TextureGpu"};

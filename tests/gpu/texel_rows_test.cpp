@@ -1,6 +1,7 @@
 // The rows the passes read as texels (access TEXELS: BVH nodes, triangles, triangle shading data,
 // materials, lights, emitters, light BVH nodes, the light selection, the clusters, and the word
-// views of the cell solutions, pair coefficients and cluster defaults) come back from their GLSL accessors bit for bit as the host wrote
+// views of the cell solutions, pair coefficients and cluster defaults, the texture table, the
+// texels and the environment's words) come back from their GLSL accessors bit for bit as the host wrote
 // them: random words in every member, including the bit patterns of NaNs, infinities and -1,
 // which a float view could alter (shaders/tests/texel_rows.comp).
 #include <cstring>
@@ -54,30 +55,38 @@ TEST(TexelRows, EveryAccessorReadsBackTheHostsBits) {
   auto solutionWords = randomElements<uint32_t>(n, rng);   // n is a multiple of 4: whole texels
   auto alphaWords = randomElements<uint32_t>(n, rng);
   auto defaultWords = randomElements<uint32_t>(n, rng);
+  auto textureTable = randomElements<glm::uvec4>(n, rng);
+  auto texelWords = randomElements<uint32_t>(n, rng);
+  auto environmentWords = randomElements<uint32_t>(n, rng);
   static_assert(n % 4 == 0, "the word views are read as whole texels");
   Buffer in[] = {makeBuffer(ctx, nodes, "nodes"), makeBuffer(ctx, shading, "shading"),
                  makeBuffer(ctx, materials, "materials"), makeBuffer(ctx, emitters, "emitters"),
                  makeBuffer(ctx, lightNodes, "light nodes"), makeBuffer(ctx, triangles, "triangles"),
                  makeBuffer(ctx, lights, "lights"), makeBuffer(ctx, selection, "light selection"),
                  makeBuffer(ctx, clusters, "clusters"), makeBuffer(ctx, solutionWords, "cell solutions"),
-                 makeBuffer(ctx, alphaWords, "pair alphas"), makeBuffer(ctx, defaultWords, "cluster defaults")};
+                 makeBuffer(ctx, alphaWords, "pair alphas"), makeBuffer(ctx, defaultWords, "cluster defaults"),
+                 makeBuffer(ctx, textureTable, "texture table"), makeBuffer(ctx, texelWords, "texels"),
+                 makeBuffer(ctx, environmentWords, "environment")};
   Buffer out[] = {Buffer(ctx, n * sizeof(shared::BvhNode), "out"), Buffer(ctx, n * sizeof(shared::TriangleShading), "out"),
                   Buffer(ctx, n * sizeof(shared::MaterialGpu), "out"), Buffer(ctx, n * sizeof(shared::EmitterGpu), "out"),
                   Buffer(ctx, n * sizeof(shared::LightBvhNodeGpu), "out"), Buffer(ctx, n * sizeof(shared::TriangleGeom), "out"),
                   Buffer(ctx, n * sizeof(shared::LightGpu), "out"), Buffer(ctx, n * sizeof(shared::LightSelectionGpu), "out"),
                   Buffer(ctx, n * sizeof(shared::ClusterGpu), "out"), Buffer(ctx, n * 4, "out"), Buffer(ctx, n * 4, "out"),
+                  Buffer(ctx, n * 4, "out"), Buffer(ctx, n * 16, "out"), Buffer(ctx, n * 4, "out"),
                   Buffer(ctx, n * 4, "out")};
   const uint32_t inBindings[] = {shared::BINDING_BVH_NODES, shared::BINDING_TRIANGLE_SHADING, shared::BINDING_MATERIALS,
                                  shared::BINDING_EMITTERS, shared::BINDING_LIGHT_BVH, shared::BINDING_TRIANGLES,
                                  shared::BINDING_LIGHTS, shared::BINDING_LIGHT_SELECTION, shared::BINDING_CLUSTERS,
                                  shared::BINDING_CELL_SOLUTION_TEXELS, shared::BINDING_PAIR_ALPHA_TEXELS,
-                                 shared::BINDING_CLUSTER_DEFAULTS_TEXELS};
+                                 shared::BINDING_CLUSTER_DEFAULTS_TEXELS, shared::BINDING_TEXTURES,
+                                 shared::BINDING_TEXELS, shared::BINDING_ENVIRONMENT};
   const uint32_t outBindings[] = {shared::BINDING_BVH_NODES_OUT, shared::BINDING_TRIANGLE_SHADING_OUT,
                                   shared::BINDING_MATERIALS_OUT, shared::BINDING_EMITTERS_OUT,
                                   shared::BINDING_LIGHT_BVH_OUT, shared::BINDING_TRIANGLES_OUT, shared::BINDING_LIGHTS_OUT,
                                   shared::BINDING_LIGHT_SELECTION_OUT, shared::BINDING_CLUSTERS_OUT,
                                   shared::BINDING_CELL_SOLUTION_OUT, shared::BINDING_PAIR_ALPHA_OUT,
-                                  shared::BINDING_CLUSTER_DEFAULTS_OUT};
+                                  shared::BINDING_CLUSTER_DEFAULTS_OUT, shared::BINDING_TEXTURES_OUT,
+                                  shared::BINDING_TEXELS_OUT, shared::BINDING_ENVIRONMENT_OUT};
   ComputePass pass(ctx, "texel_rows", BINDINGS_OF(TEXEL_ROWS_BUFFERS), sizeof(shared::TexelRowsConstants), {});
   static_assert(std::size(in) == std::size(inBindings) && std::size(out) == std::size(outBindings), "one binding per row");
   for (size_t r = 0; r < std::size(in); ++r) {
@@ -99,6 +108,9 @@ TEST(TexelRows, EveryAccessorReadsBackTheHostsBits) {
   expectSameBits(out[9], solutionWords, "cell solution words");
   expectSameBits(out[10], alphaWords, "pair alpha words");
   expectSameBits(out[11], defaultWords, "cluster default words");
+  expectSameBits(out[12], textureTable, "texture table");
+  expectSameBits(out[13], texelWords, "texels");
+  expectSameBits(out[14], environmentWords, "environment words");
   EXPECT_EQ(ctx.validationErrors(), 0u);
 }
 
