@@ -62,8 +62,9 @@ void main() {
   if (path >= pc.pathCount) return;
   uint pixel = pc.pixelOffset + path;
   uint rng = rngInit(pixel, pc.sampleIndex, pc.seed);
+  uvec2 xy = cameraPixelCoords(pixel, camera.width);
   vec2 jitter = vec2(rngNextFloat(rng), rngNextFloat(rng));
-  vec3 direction = cameraRayDirection(camera, pixel % camera.width, pixel / camera.width, jitter);
+  vec3 direction = cameraRayDirection(camera, xy.x, xy.y, jitter);
   PathCounters rays;
   rays.extensionRays = 0u;
   rays.shadowRays = 0u;

@@ -15,9 +15,10 @@ void main() {
   if (path >= pc.pathCount) return;
   uint pixel = pc.pixelOffset + path;
   uint rng = rngInit(pixel, pc.sampleIndex, pc.seed);
+  uvec2 xy = cameraPixelCoords(pixel, camera.width);
   vec2 jitter = vec2(rngNextFloat(rng), rngNextFloat(rng));
   rayOrigin[path] = camera.position;
-  rayDirection[path] = cameraRayDirection(camera, pixel % camera.width, pixel / camera.width, jitter);
+  rayDirection[path] = cameraRayDirection(camera, xy.x, xy.y, jitter);
   throughput[path] = vec3(1.0);
   radiance[path] = vec3(0.0);
   misPdf[path] = 0.0;   // 0: the camera ray, whose emitter hits take no MIS weight
