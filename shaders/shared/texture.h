@@ -5,23 +5,19 @@
 #ifndef MIXTRACE_SHARED_TEXTURE_H
 #define MIXTRACE_SHARED_TEXTURE_H
 #include "shared/dialect.h"
+#include "shared/floor_quotient.h"
 #include "shared/layouts.h"
 #include "shared/sampling.h"
 SHARED_BEGIN_WITH_BUFFERS
 
 // The texel coordinate i wrapped into [0, n) by the glTF wrap mode. Repeat and mirror take the
-// remainder from a float quotient rather than integer `%`: SIMD units have no integer division,
-// so lavapipe divides lane by lane (and runs every mode's branch), which made the remainders a
-// large part of a textured scene's shade pass. For |i| < 2^24 the correctly rounded quotient never
-// crosses an integer (its distance to one is at least 1 / period, half an ulp at most), so the
-// remainder is exact; GLSL allows a division 2.5 ulp off (a GPU's reciprocal), which can cross one,
-// and the two corrections absorb that. Beyond 2^24 (millions of repeats) the clamp keeps it a texel.
+// remainder from floorQuotient (shared/floor_quotient.h), not integer `%`, which lavapipe runs lane
+// by lane (and every mode's branch); it is exact for |i| < 2^24. Beyond that (millions of
+// repeats) the clamp keeps it a texel.
 SHARED_FN int wrapTexelCoord(int i, int n, uint mode) {
   if (mode == kWrapClamp) return clamp(i, 0, n - 1);
   int period = mode == kWrapMirror ? 2 * n : n;
-  int m = i - int(floor(float(i) / float(period))) * period;
-  if (m < 0) m += period;
-  if (m >= period) m -= period;
+  int m = i - floorQuotient(i, period) * period;
   if (mode == kWrapMirror && m >= n) m = period - 1 - m;
   return clamp(m, 0, n - 1);
 }
