@@ -1,7 +1,8 @@
 // Pixel index -> (column, row) (shaders/shared/camera.h cameraPixelCoords, compiled as C++): the
 // float quotient with its one-row corrections equals integer division and remainder at both ends
-// of every row, for widths from 1 to kMaxImageSide and images up to kMaxImageSide rows, where
-// float(pixel) itself is no longer exact (above 2^24 pixels).
+// of every row, for ten widths between 1 and kMaxImageSide (small, odd, near 2^12 and the limit)
+// and images of kMaxImageSide rows, where float(pixel) itself is no longer exact (above 2^24
+// pixels).
 #include <cstdint>
 
 #include <gtest/gtest.h>
